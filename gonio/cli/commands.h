@@ -1,0 +1,23 @@
+#pragma once
+// The gonio subcommands; each returns the process exit code.
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+struct ModelOptions {
+    std::string config;
+    std::string output;                // default: <config stem>.h5 in the working directory
+    std::vector<std::string> overrides;
+    bool overwrite = false;
+    bool quiet = false;
+    int threads = 0;                   // 0: all cores
+    std::string command_line;
+};
+// `gonio model`: Model L1 of every case and incidence, written to HDF5.
+int run_model_command(const ModelOptions& options);
+
+// `gonio info FILE [--json]`.
+int run_info_command(const std::string& path, bool as_json);
+
+} // namespace gonio

@@ -1,0 +1,318 @@
+#include "gonio/config/config.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "gonio/config/config_error.h"
+#include "gonio/config/overrides.h"
+#include "gonio/config/table_reader.h"
+#include "gonio/material/ior_table.h"
+
+namespace gonio {
+
+namespace {
+
+// Every key a section may hold; anything else is reported as unknown.
+const std::map<std::string, std::vector<std::string>>& schema() {
+    static const std::map<std::string, std::vector<std::string>> s = {
+        {"", {"seed", "name", "ndf", "material", "spectrum", "beam", "sensor", "model", "case"}},
+        {"case", {"name", "ndf", "material", "spectrum", "beam", "sensor", "model"}},
+        {"ndf", {"type", "alpha", "alpha_x", "alpha_y"}},
+        {"material", {"type", "eta", "ior", "n", "k", "f0"}},
+        {"spectrum", {"wavelengths"}},
+        {"beam", {"theta_i", "phi_i"}},
+        {"sensor", {"cells"}},
+        {"model", {"masking", "quadrature", "tolerance"}},
+    };
+    return s;
+}
+const std::vector<std::string> kSections = {"ndf", "material", "spectrum", "beam", "sensor", "model"};
+
+const Range kAlpha{1e-6, 100};
+const Range kThetaI{0, 90, false, true};
+const Range kPhiI{0, 360};
+const Range kCells{1, 1e7};
+const Range kWavelength{200, 20000};
+const Range kEta{1e-3, 100};
+const Range kK{0, 100};
+const Range kF0{0, 1};
+
+class Loader {
+  public:
+    Loader(const toml::table& root, std::string file) : root_(root), file_(std::move(file)) {}
+
+    Config load() {
+        Config cfg;
+        check_sections(root_, "", "");
+        TableReader top(&root_, "", nullptr, "", file_, usage_);
+        cfg.seed = static_cast<std::uint64_t>(top.integer("seed", {0, 9.2e18}, 1));
+        const toml::node* cases = root_.get("case");
+        if (cases) {
+            usage_.mark(cases);
+            const toml::array* arr = cases->as_array();
+            if (!arr || !arr->is_array_of_tables() || arr->empty())
+                throw ConfigError(file_, line(cases), "case",
+                                  "must be an array of tables: [[case]] sections");
+            for (size_t k = 0; k < arr->size(); ++k) {
+                const toml::table& t = *(*arr)[k].as_table();
+                const std::string path = "case[" + std::to_string(k) + "]";
+                check_sections(t, "case", path);
+                cfg.cases.push_back(load_case(&t, path));
+            }
+        } else {
+            cfg.cases.push_back(load_case(nullptr, ""));
+        }
+        check_names(cfg);
+        report_unused(root_, "");
+        return cfg;
+    }
+
+  private:
+    static int line(const toml::node* n) { return n ? static_cast<int>(n->source().begin.line) : 0; }
+
+    std::string join(const std::string& a, const std::string& b) const {
+        return a.empty() ? b : a + "." + b;
+    }
+
+    // Unknown keys are reported at once, with a suggestion.
+    void check_sections(const toml::table& t, const std::string& kind, const std::string& path) {
+        const auto& allowed = schema().at(kind);
+        for (const auto& [k, v] : t) {
+            const std::string key(k.str());
+            if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) unknown(key, v, allowed, path);
+            if (std::find(kSections.begin(), kSections.end(), key) != kSections.end()) {
+                const toml::table* sec = v.as_table();
+                if (!sec)
+                    throw ConfigError(file_, line(&v), join(path, key), "must be a table");
+                usage_.mark(&v);
+                const auto& sec_allowed = schema().at(key);
+                for (const auto& [sk, sv] : *sec) {
+                    const std::string skey(sk.str());
+                    if (std::find(sec_allowed.begin(), sec_allowed.end(), skey) == sec_allowed.end())
+                        unknown(skey, sv, sec_allowed, join(path, key));
+                }
+            }
+        }
+    }
+
+    [[noreturn]] void unknown(const std::string& key, const toml::node& v,
+                              const std::vector<std::string>& allowed, const std::string& path) {
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        const std::string guess = closest_name(key, allowed.data(), allowed.size());
+        throw ConfigError(file_, line(&v), join(path, key),
+                          "unknown key" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)") +
+                              "; allowed here: " + list);
+    }
+
+    // Keys that are known but that no case used (e.g. `ior` for a mirror) are errors too.
+    void report_unused(const toml::table& t, const std::string& path) {
+        for (const auto& [k, v] : t) {
+            const std::string key = join(path, std::string(k.str()));
+            if (const toml::table* sub = v.as_table(); sub && usage_.used(&v)) {
+                report_unused(*sub, key);
+                continue;
+            }
+            if (const toml::array* arr = v.as_array(); arr && arr->is_array_of_tables()) {
+                for (size_t i = 0; i < arr->size(); ++i)
+                    report_unused(*(*arr)[i].as_table(), key + "[" + std::to_string(i) + "]");
+                continue;
+            }
+            if (!usage_.used(&v))
+                throw ConfigError(file_, line(&v), key,
+                                  "is not used by any case (it does not apply to the settings "
+                                  "around it, e.g. a material key the material type ignores)");
+        }
+    }
+
+    const toml::table* section(const toml::table* t, const std::string& name) const {
+        if (!t) return nullptr;
+        const toml::node* n = t->get(name);
+        return n ? n->as_table() : nullptr;
+    }
+
+    TableReader reader(const toml::table* case_table, const std::string& case_path,
+                       const std::string& name) {
+        return TableReader(section(case_table, name), join(case_path, name), section(&root_, name),
+                           name, file_, usage_);
+    }
+
+    CaseConfig load_case(const toml::table* t, const std::string& path) {
+        CaseConfig c;
+        if (t) {
+            TableReader named(t, path, nullptr, "", file_, usage_);
+            c.name = named.any_string("name");
+        } else {
+            TableReader top(&root_, "", nullptr, "", file_, usage_);
+            std::string stem = file_.substr(file_.find_last_of('/') + 1);
+            stem = stem.substr(0, stem.find('.'));
+            c.name = top.has("name") ? top.any_string("name") : stem;
+        }
+        load_ndf(c, reader(t, path, "ndf"));
+        load_material(c, reader(t, path, "material"), reader(t, path, "spectrum"));
+        TableReader beam = reader(t, path, "beam");
+        c.theta_i_deg = beam.number_list("theta_i", kThetaI);
+        c.phi_i_deg = beam.number_list("phi_i", kPhiI, std::vector<double>{0.0});
+        TableReader sensor = reader(t, path, "sensor");
+        c.sensor_cells = static_cast<int>(sensor.integer("cells", kCells, 3240));
+        TableReader model = reader(t, path, "model");
+        const std::string masking =
+            model.string("masking", {"height-correlated", "uncorrelated"}, "height-correlated");
+        c.masking = masking == "uncorrelated" ? MaskingForm::uncorrelated
+                                              : MaskingForm::height_correlated;
+        c.quadrature.points = static_cast<int>(model.integer("quadrature", {1, 64}, 4));
+        c.quadrature.rel_tol = model.number("tolerance", {1e-12, 0.1}, 1e-6);
+        return c;
+    }
+
+    void load_ndf(CaseConfig& c, TableReader r) {
+        c.ndf.type = r.string("type", {"beckmann", "ggx"});
+        const bool iso = r.has("alpha");
+        const bool aniso = r.has("alpha_x") || r.has("alpha_y");
+        if (iso && aniso)
+            r.fail("alpha", "give either alpha or both alpha_x and alpha_y, not both");
+        if (iso) {
+            c.ndf.alpha_x = c.ndf.alpha_y = r.number("alpha", kAlpha);
+        } else if (aniso) {
+            c.ndf.alpha_x = r.number("alpha_x", kAlpha);
+            c.ndf.alpha_y = r.number("alpha_y", kAlpha);
+        } else {
+            r.fail("alpha", "missing: give alpha (isotropic) or alpha_x and alpha_y; allowed " +
+                                kAlpha.describe());
+        }
+    }
+
+    // A per-channel list: a single value (achromatic) or one value per wavelength.
+    std::vector<double> per_channel(TableReader& r, const std::string& key, const Range& range,
+                                    const std::vector<double>& wavelengths) {
+        std::vector<double> v = r.number_list(key, range);
+        if (v.size() != 1 && v.size() != wavelengths.size())
+            r.fail(key, "has " + std::to_string(v.size()) +
+                            " values; give one (achromatic) or one per wavelength (" +
+                            std::to_string(wavelengths.size()) + ")");
+        return v;
+    }
+
+    void load_material(CaseConfig& c, TableReader r, TableReader spectrum) {
+        c.material_type = r.string("type", {"mirror", "dielectric", "conductor", "schlick"}, "mirror");
+        // Wavelengths matter only to a spectral material; read them lazily so that an unused
+        // [spectrum] is reported.
+        auto wavelengths = [&]() {
+            return spectrum.number_list("wavelengths", kWavelength,
+                                        std::vector<double>{650.0, 550.0, 450.0});
+        };
+        if (c.material_type == "mirror") {
+            c.fresnel = FresnelTerm::mirror();
+        } else if (c.material_type == "dielectric" || c.material_type == "schlick") {
+            const bool dielectric = c.material_type == "dielectric";
+            const std::string key = dielectric ? "eta" : "f0";
+            std::vector<double> v = r.number_list(key, dielectric ? kEta : kF0);
+            if (v.size() > 1) { // spectral: one value per wavelength
+                c.wavelengths_nm = wavelengths();
+                if (v.size() != c.wavelengths_nm.size())
+                    r.fail(key, "has " + std::to_string(v.size()) +
+                                    " values; give one (achromatic) or one per wavelength (" +
+                                    std::to_string(c.wavelengths_nm.size()) + ")");
+            }
+            c.fresnel = dielectric ? FresnelTerm::dielectric(v) : FresnelTerm::schlick(v);
+        } else { // conductor
+            c.wavelengths_nm = wavelengths();
+            std::vector<std::complex<double>> eta;
+            if (r.has("ior")) {
+                if (r.has("n") || r.has("k"))
+                    r.fail("ior", "give either ior (a table) or n and k, not both");
+                const std::string name = r.any_string("ior");
+                const std::string file = resolve_ior_path(name);
+                IorTable table = [&]() {
+                    try {
+                        return IorTable::load(file);
+                    } catch (const std::exception& e) {
+                        r.fail("ior", std::string(e.what()) +
+                                          " (a name such as \"Au\", \"Ag\", \"Cu\", \"Al\" or a "
+                                          "path to a CSV)");
+                    }
+                }();
+                for (double w : c.wavelengths_nm) {
+                    if (w < table.min_wavelength() || w > table.max_wavelength())
+                        spectrum.fail("wavelengths",
+                                      "wavelength " + std::to_string(w) + " nm is outside table " +
+                                          file + "; allowed [" +
+                                          std::to_string(table.min_wavelength()) + ", " +
+                                          std::to_string(table.max_wavelength()) + "] nm");
+                    eta.push_back(table.at(w));
+                }
+                c.material_source = file;
+            } else {
+                const std::vector<double> n = per_channel(r, "n", kEta, c.wavelengths_nm);
+                const std::vector<double> k = per_channel(r, "k", kK, c.wavelengths_nm);
+                for (size_t i = 0; i < c.wavelengths_nm.size(); ++i)
+                    eta.emplace_back(n[n.size() == 1 ? 0 : i], k[k.size() == 1 ? 0 : i]);
+            }
+            c.fresnel = FresnelTerm::conductor(eta);
+        }
+    }
+
+    void check_names(const Config& cfg) {
+        std::set<std::string> seen;
+        for (size_t k = 0; k < cfg.cases.size(); ++k) {
+            const std::string& n = cfg.cases[k].name;
+            const std::string key = cfg.cases.size() > 1 || root_.get("case")
+                                        ? "case[" + std::to_string(k) + "].name"
+                                        : "name";
+            const toml::node* node = nullptr;
+            if (const toml::array* arr = root_["case"].as_array())
+                node = (*arr)[k].as_table()->get("name");
+            if (n.empty() || n.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                 "0123456789_.-+") != std::string::npos)
+                throw ConfigError(file_, line(node), key,
+                                  "\"" + n + "\" is not allowed; use letters, digits and _ . - +");
+            if (!seen.insert(n).second)
+                throw ConfigError(file_, line(node), key, "\"" + n + "\" names two cases");
+        }
+    }
+
+    const toml::table& root_;
+    std::string file_;
+    UsageTracker usage_;
+};
+
+} // namespace
+
+const char* masking_name(MaskingForm form) {
+    return form == MaskingForm::uncorrelated ? "uncorrelated" : "height-correlated";
+}
+
+Config parse_config(const std::string& text, const std::string& path,
+                    const std::vector<std::string>& overrides) {
+    toml::table root;
+    try {
+        root = toml::parse(text, path);
+    } catch (const toml::parse_error& e) {
+        throw ConfigError(path, static_cast<int>(e.source().begin.line), "",
+                          "TOML syntax error: " + std::string(e.description()));
+    }
+    for (const auto& o : overrides) apply_override(root, o, path);
+    Config cfg = Loader(root, path).load();
+    cfg.path = path;
+    cfg.text = text;
+    cfg.overrides = overrides;
+    std::ostringstream s;
+    s << root;
+    cfg.effective_toml = s.str();
+    return cfg;
+}
+
+Config load_config(const std::string& path, const std::vector<std::string>& overrides) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ConfigError(path, -1, "", "cannot open the config file (missing or unreadable)");
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    return parse_config(buffer.str(), path, overrides);
+}
+
+} // namespace gonio

@@ -1,0 +1,179 @@
+#include "gonio/config/table_reader.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "gonio/config/config_error.h"
+
+namespace gonio {
+
+namespace {
+std::string number_text(double v) {
+    std::ostringstream s;
+    s.precision(10);
+    s << v;
+    return s.str();
+}
+std::string type_name(const toml::node& n) {
+    switch (n.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::table: return "a table";
+    default: return "a date or time";
+    }
+}
+} // namespace
+
+bool Range::contains(double v) const {
+    if (!std::isfinite(v)) return false;
+    if (lo_open ? !(v > lo) : !(v >= lo)) return false;
+    if (hi_open ? !(v < hi) : !(v <= hi)) return false;
+    return true;
+}
+
+std::string Range::describe() const {
+    return std::string(lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) +
+           (hi_open ? ")" : "]");
+}
+
+TableReader::TableReader(const toml::table* section, std::string section_path,
+                         const toml::table* defaults, std::string defaults_path, std::string file,
+                         UsageTracker& usage)
+    : section_(section), section_path_(std::move(section_path)), defaults_(defaults),
+      defaults_path_(std::move(defaults_path)), file_(std::move(file)), usage_(usage) {}
+
+TableReader::Found TableReader::find(const std::string& key) const {
+    if (section_)
+        if (const toml::node* n = section_->get(key)) return {n, true};
+    if (defaults_)
+        if (const toml::node* n = defaults_->get(key)) return {n, false};
+    return {};
+}
+
+bool TableReader::has(const std::string& key) const { return find(key).node != nullptr; }
+bool TableReader::is_string(const std::string& key) const {
+    const Found f = find(key);
+    return f.node && f.node->is_string();
+}
+
+std::string TableReader::key_path(const std::string& key) const {
+    const Found f = find(key);
+    const std::string& prefix = (f.node && !f.in_section) || !section_ ? defaults_path_
+                                                                       : section_path_;
+    return prefix.empty() ? key : prefix + "." + key;
+}
+
+int TableReader::line_of(const std::string& key) const {
+    const Found f = find(key);
+    if (f.node) return static_cast<int>(f.node->source().begin.line);
+    if (section_) return static_cast<int>(section_->source().begin.line);
+    if (defaults_) return static_cast<int>(defaults_->source().begin.line);
+    return 0;
+}
+
+void TableReader::fail(const std::string& key, const std::string& problem) const {
+    int line = line_of(key);
+    // A key given neither here nor in the defaults: point at the file, not the command line.
+    if (line == 0 && !find(key).node) line = 1;
+    throw ConfigError(file_, line, key_path(key), problem);
+}
+
+const toml::node& TableReader::require(const std::string& key) const {
+    const Found f = find(key);
+    if (!f.node) fail(key, "missing (required)");
+    usage_.mark(f.node);
+    return *f.node;
+}
+
+double TableReader::as_number(const toml::node& n, const std::string& key,
+                              const Range& range) const {
+    const std::optional<double> v = n.value<double>();
+    if (!v || !(n.is_integer() || n.is_floating_point()))
+        fail(key, "must be a number, got " + type_name(n) + "; allowed " + range.describe());
+    if (!range.contains(*v))
+        fail(key, "value " + number_text(*v) + " is out of range; allowed " + range.describe());
+    return *v;
+}
+
+std::string TableReader::any_string(const std::string& key) {
+    const toml::node& n = require(key);
+    if (!n.is_string()) fail(key, "must be a string, got " + type_name(n));
+    return *n.value<std::string>();
+}
+
+std::string TableReader::string(const std::string& key, const std::vector<std::string>& allowed,
+                                std::optional<std::string> fallback) {
+    if (!has(key) && fallback) return *fallback;
+    const std::string v = any_string(key);
+    std::string list;
+    for (const auto& a : allowed) {
+        if (a == v) return v;
+        list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
+    }
+    const std::string guess = closest_name(v, allowed.data(), allowed.size());
+    fail(key, "\"" + v + "\" is not allowed" + (guess.empty() ? "" : " (did you mean \"" + guess + "\"?)") +
+                  "; allowed: " + list);
+}
+
+double TableReader::number(const std::string& key, const Range& range,
+                           std::optional<double> fallback) {
+    if (!has(key) && fallback) return *fallback;
+    return as_number(require(key), key, range);
+}
+
+long long TableReader::integer(const std::string& key, const Range& range,
+                               std::optional<long long> fallback) {
+    if (!has(key) && fallback) return *fallback;
+    const toml::node& n = require(key);
+    if (!n.is_integer())
+        fail(key, "must be an integer, got " + type_name(n) + "; allowed " + range.describe());
+    const long long v = *n.value<long long>();
+    if (!range.contains(static_cast<double>(v)))
+        fail(key, "value " + std::to_string(v) + " is out of range; allowed " + range.describe());
+    return v;
+}
+
+std::vector<double> TableReader::number_list(const std::string& key, const Range& range,
+                                             std::optional<std::vector<double>> fallback) {
+    if (!has(key) && fallback) return *fallback;
+    const toml::node& n = require(key);
+    std::vector<double> out;
+    if (const toml::array* a = n.as_array()) {
+        if (a->empty()) fail(key, "must not be an empty array");
+        for (const toml::node& e : *a) out.push_back(as_number(e, key, range));
+        return out;
+    }
+    if (const toml::table* t = n.as_table()) {
+        // A range table: {start, stop, step} or {start, stop, count}, stop included.
+        TableReader sub(t, key_path(key), nullptr, "", file_, usage_);
+        const double start = sub.number("start", range);
+        const double stop = sub.number("stop", range);
+        const bool by_count = sub.has("count");
+        if (by_count == sub.has("step"))
+            fail(key, "a range table needs start, stop and exactly one of step or count");
+        if (by_count) {
+            const long long count = sub.integer("count", {1, 1e6});
+            for (long long k = 0; k < count; ++k)
+                out.push_back(count == 1 ? start : start + (stop - start) * k / (count - 1));
+        } else {
+            const double step = sub.number("step", {0, 1e9, true, false});
+            if (stop < start) fail(key, "a range table needs stop >= start");
+            const long long count = static_cast<long long>(std::floor((stop - start) / step + 1e-9)) + 1;
+            if (count > 1000000) fail(key, "a range table may expand to at most 1000000 values");
+            for (long long k = 0; k < count; ++k) out.push_back(start + step * k);
+        }
+        for (const auto& [k, v] : *t)
+            if (!usage_.used(&v))
+                throw ConfigError(file_, static_cast<int>(v.source().begin.line),
+                                  key_path(key) + "." + std::string(k.str()),
+                                  "unknown key (allowed: start, stop, step, count)");
+        return out;
+    }
+    out.push_back(as_number(n, key, range));
+    return out;
+}
+
+} // namespace gonio

@@ -1,0 +1,77 @@
+#pragma once
+// Typed, range-checked reads from one section of a TOML config, with its defaults.
+//
+// A case's section (e.g. [[case]] ... ndf = {...}) is read first and the file's top-level section
+// of the same name supplies defaults. Every key read is marked as used; UsageTracker then reports
+// any key no case used, so a misspelled or misplaced key never passes silently.
+#include <toml++/toml.h>
+
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+// Closed/open numeric interval used in checks and in the error text ("allowed (0, 100]").
+struct Range {
+    double lo, hi;
+    bool lo_open = false, hi_open = false;
+    bool contains(double v) const;
+    std::string describe() const;
+};
+
+class UsageTracker {
+  public:
+    void mark(const toml::node* n) { used_.insert(n); }
+    bool used(const toml::node* n) const { return used_.count(n) > 0; }
+
+  private:
+    std::set<const toml::node*> used_;
+};
+
+class TableReader {
+  public:
+    // `section` and `defaults` may be null. Paths are the keys' prefixes in messages
+    // ("case[1].ndf", "ndf").
+    TableReader(const toml::table* section, std::string section_path, const toml::table* defaults,
+                std::string defaults_path, std::string file, UsageTracker& usage);
+
+    bool has(const std::string& key) const;
+    // The message key and line of a key (where it was found, else the section).
+    std::string key_path(const std::string& key) const;
+    int line_of(const std::string& key) const;
+
+    std::string string(const std::string& key, const std::vector<std::string>& allowed,
+                       std::optional<std::string> fallback = std::nullopt);
+    std::string any_string(const std::string& key);
+    double number(const std::string& key, const Range& range,
+                  std::optional<double> fallback = std::nullopt);
+    long long integer(const std::string& key, const Range& range,
+                      std::optional<long long> fallback = std::nullopt);
+    // A number, an array of numbers, or a range table {start, stop, step} / {start, stop, count}
+    // (stop included); every value must be in `range`.
+    std::vector<double> number_list(const std::string& key, const Range& range,
+                                    std::optional<std::vector<double>> fallback = std::nullopt);
+    bool is_string(const std::string& key) const;
+
+    [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
+
+  private:
+    struct Found {
+        const toml::node* node = nullptr;
+        bool in_section = false;
+    };
+    Found find(const std::string& key) const;
+    const toml::node& require(const std::string& key) const;
+    double as_number(const toml::node& n, const std::string& key, const Range& range) const;
+
+    const toml::table* section_;
+    std::string section_path_;
+    const toml::table* defaults_;
+    std::string defaults_path_;
+    std::string file_;
+    UsageTracker& usage_;
+};
+
+} // namespace gonio

@@ -1,0 +1,52 @@
+#pragma once
+// RAII ownership of HDF5 identifiers and small helpers around the HDF5 C API and its
+// dimension-scale (H5DS, hdf5_hl) interface. Every failing call throws std::runtime_error.
+#include <hdf5.h>
+
+#include <string>
+#include <vector>
+
+namespace gonio::h5 {
+
+class Handle {
+  public:
+    using Closer = herr_t (*)(hid_t);
+    Handle() = default;
+    Handle(hid_t id, Closer closer, const char* what);
+    Handle(const Handle&) = delete;
+    Handle& operator=(const Handle&) = delete;
+    Handle(Handle&& o) noexcept : id_(o.id_), closer_(o.closer_) { o.id_ = -1; }
+    Handle& operator=(Handle&& o) noexcept;
+    ~Handle() { reset(); }
+    hid_t get() const { return id_; }
+    operator hid_t() const { return id_; }
+    void reset();
+
+  private:
+    hid_t id_ = -1;
+    Closer closer_ = nullptr;
+};
+
+// Silences HDF5's own error printing: gonio reports errors itself.
+void silence_errors();
+void check(herr_t status, const char* what);
+
+void write_string_attribute(hid_t object, const std::string& name, const std::string& value);
+void write_double_attribute(hid_t object, const std::string& name, double value);
+void write_int_attribute(hid_t object, const std::string& name, long long value);
+std::string read_string_attribute(hid_t object, const std::string& name);
+bool has_attribute(hid_t object, const std::string& name);
+
+// A 1-D float64 (or int32 when `integer`) coordinate, made a dimension scale named `name`.
+Handle write_scale(hid_t group, const std::string& name, const std::vector<double>& values,
+                   const std::string& units, const std::string& description, bool integer = false);
+
+// An N-D float64 dataset, chunked as `chunk`, deflate + shuffle.
+Handle write_dataset(hid_t group, const std::string& name, const std::vector<hsize_t>& dims,
+                     const std::vector<hsize_t>& chunk, const double* data,
+                     const std::string& units, const std::string& description);
+
+std::vector<double> read_doubles(hid_t group, const std::string& name,
+                                 std::vector<hsize_t>* dims = nullptr);
+
+} // namespace gonio::h5

@@ -1,0 +1,30 @@
+#pragma once
+// Reads the summary of a result file: run metadata and, per case and incidence, every stored
+// albedo (datasets named *_albedo), for `gonio info`.
+#include <map>
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+struct CaseSummary {
+    std::string name;
+    std::map<std::string, std::string> attributes; // the group's string attributes
+    std::vector<double> theta_i_deg, phi_i_deg, wavelength_nm;
+    int cells = 0;
+    int channels = 0;
+    // dataset name -> values [theta_i][phi_i][channel]
+    std::map<std::string, std::vector<double>> albedos;
+};
+
+struct ResultSummary {
+    std::string path;
+    std::map<std::string, std::string> attributes; // root string attributes
+    long long seed = 0;
+    std::vector<CaseSummary> cases;
+};
+
+// Throws std::runtime_error naming the file if it is missing or not a gonio result file.
+ResultSummary read_result_summary(const std::string& path);
+
+} // namespace gonio

@@ -1,0 +1,43 @@
+#pragma once
+// The HDF5 result file (layout in the README, "Result file"). One file per run, one group per
+// case; coordinates are HDF5 dimension scales with units; the config, program version, git hash,
+// seed and command line are stored in the root attributes. The file is written under a temporary
+// name and renamed when complete, so a failed run leaves nothing half-written.
+#include <string>
+#include <vector>
+
+#include "gonio/config/config.h"
+#include "gonio/io/hdf5_handles.h"
+#include "sensor/beckers_sensor.h"
+
+namespace gonio {
+
+// Model L1 of one case, over its incidence sweep (theta_i major, then phi_i).
+struct ModelL1Result {
+    std::vector<double> energy;  // [theta_i][phi_i][cell][channel]: fraction of incident power
+    std::vector<double> albedo;  // [theta_i][phi_i][channel]
+    std::vector<double> seconds; // [theta_i][phi_i]: wall time of the evaluation
+};
+
+class ResultWriter {
+  public:
+    // Throws std::runtime_error if `path` exists and !overwrite.
+    ResultWriter(std::string path, bool overwrite);
+    ~ResultWriter(); // removes the temporary file unless commit() succeeded
+    ResultWriter(const ResultWriter&) = delete;
+    ResultWriter& operator=(const ResultWriter&) = delete;
+
+    void write_run(const Config& cfg, const std::string& command_line);
+    void write_model_case(const CaseConfig& c, const BeckersSensor& sensor, const ModelL1Result& r);
+    // Closes the file and renames it to its final path.
+    void commit();
+
+    static std::string conventions();
+
+  private:
+    std::string path_, tmp_path_;
+    h5::Handle file_;
+    bool committed_ = false;
+};
+
+} // namespace gonio

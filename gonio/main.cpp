@@ -1,0 +1,56 @@
+// gonio: a virtual gonioreflectometer for explicit microfacet surfaces. See README.md.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+#include "gonio/cli/commands.h"
+#include "gonio/config/config_error.h"
+#include "gonio_version.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"gonio: a virtual gonioreflectometer for microfacet surfaces"};
+    app.set_version_flag("--version", std::string(gonio::kVersion) + " (git " + gonio::kGitHash + ")");
+    app.require_subcommand(1);
+
+    std::string command_line;
+    for (int k = 0; k < argc; ++k) command_line += (k ? " " : "") + std::string(argv[k]);
+
+    gonio::ModelOptions model;
+    model.command_line = command_line;
+    CLI::App* model_cmd = app.add_subcommand(
+        "model", "Evaluate the analytic Model L1 on the sensor cells for every case and incidence");
+    model_cmd->add_option("config", model.config, "TOML config file")->required();
+    model_cmd->add_option("-o,--output", model.output, "HDF5 result file (default: <config>.h5)");
+    model_cmd->add_option("--set", model.overrides,
+                          "Override a config key, e.g. --set ndf.alpha=0.3 or "
+                          "--set case.1.beam.theta_i=[0,60] (repeatable)");
+    model_cmd->add_flag("--overwrite", model.overwrite, "Replace an existing output file");
+    model_cmd->add_flag("-q,--quiet", model.quiet, "No progress and no table");
+    model_cmd->add_option("--threads", model.threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(0, 1024));
+
+    std::string info_path;
+    bool info_json = false;
+    CLI::App* info_cmd = app.add_subcommand("info", "Summarise a result file");
+    info_cmd->add_option("file", info_path, "HDF5 result file")->required();
+    info_cmd->add_flag("--json", info_json, "Print a JSON object instead of text");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? 0 : 2;
+    }
+    try {
+        if (*model_cmd) return gonio::run_model_command(model);
+        if (*info_cmd) return gonio::run_info_command(info_path, info_json);
+    } catch (const gonio::ConfigError& e) {
+        std::fprintf(stderr, "gonio: error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "gonio: error: %s\n", e.what());
+        return 1;
+    }
+    return 0;
+}

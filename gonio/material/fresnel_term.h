@@ -1,0 +1,33 @@
+#pragma once
+// The Fresnel reflectance of one microfacet, per spectral channel: what the specular models and
+// (later) the simulator's materials multiply a reflected ray by. Only as many channels as the
+// material needs: a perfect mirror or a dielectric with one index is achromatic (one channel).
+#include <complex>
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+class FresnelTerm {
+  public:
+    enum class Kind { mirror, dielectric, conductor, schlick };
+
+    static FresnelTerm mirror();
+    static FresnelTerm dielectric(std::vector<double> eta);
+    static FresnelTerm conductor(std::vector<std::complex<double>> eta);
+    static FresnelTerm schlick(std::vector<double> f0);
+
+    Kind kind() const { return kind_; }
+    int channels() const { return channels_; }
+    // Reflectance for cos_i = i.m in [0, 1], one value per channel into out[0..channels).
+    void eval(double cos_i, double* out) const;
+    std::string describe() const;
+
+  private:
+    Kind kind_ = Kind::mirror;
+    int channels_ = 1;
+    std::vector<double> real_;
+    std::vector<std::complex<double>> complex_;
+};
+
+} // namespace gonio

@@ -1,0 +1,51 @@
+#pragma once
+// The microfacet normal distribution interface. Every distribution of gonio implements it, so the
+// surface generator, the analytic models and the simulator can use any of them.
+//
+// Conventions (README): n = +z; D is normalised so that  integral D(m) (m.n) dw_m = 1  [R19 Eq. 2
+// text]; Smith's masking G1(v) = 1 / (1 + Lambda(v)) [R19 Eq. 8]; directions are unit vectors.
+#include <string>
+
+#include "core/math.h"
+
+namespace gonio {
+
+// Which Smith masking-shadowing term G2 the models use.
+enum class MaskingForm {
+    height_correlated, // G2 = 1 / (1 + Lambda(i) + Lambda(o))       [R19 Eq. 9]
+    uncorrelated,      // G2 = G1(i) G1(o)                             [R19 Eq. 3]
+};
+
+class Ndf {
+  public:
+    virtual ~Ndf() = default;
+
+    // D(m) in sr^-1; 0 for m.z <= 0.
+    virtual double D(const Vec3& m) const = 0;
+    // Smith Lambda(v) for v.z > 0 (+infinity at or below the horizon) [R19 Eq. 8].
+    virtual double lambda(const Vec3& v) const = 0;
+    // A normal m with pdf D(m) m.z, from two uniforms in [0, 1).
+    virtual Vec3 sample_m(double u1, double u2) const = 0;
+    // A normal visible from v (v.z > 0) with pdf D_v(m) = G1(v) <v.m> D(m) / v.z (Heitz 2014).
+    virtual Vec3 sample_visible(const Vec3& v, double u1, double u2) const = 0;
+    // Short family name ("beckmann") and a full description with parameters.
+    virtual std::string name() const = 0;
+    virtual std::string describe() const = 0;
+    // Angular widths of the narrowest and widest lobe features (radians, roughly the slope
+    // standard deviation): the analytic models refine their quadrature down to this scale.
+    virtual double narrowest_feature() const = 0;
+    virtual double widest_feature() const = 0;
+
+    // G1(v) = 1 / (1 + Lambda(v)) [R19 Eq. 8].
+    double G1(const Vec3& v) const;
+    // G1(v, m): masking of a facet m seen from v, 0 for back-facing facets [R19 Eq. 4].
+    double G1(const Vec3& v, const Vec3& m) const;
+    // Masking-shadowing G2(i, o, m) in the chosen form [R19 Eq. 3 and Eq. 9].
+    double G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form) const;
+    // pdf of sample_m: D(m) m.z.
+    double pdf_m(const Vec3& m) const;
+    // pdf of sample_visible: G1(v, m) <v.m> D(m) / v.z.
+    double pdf_visible(const Vec3& v, const Vec3& m) const;
+};
+
+} // namespace gonio

@@ -1,0 +1,53 @@
+#pragma once
+// Brute-force integrals over the hemisphere of normals for the NDF tests: adaptive Gauss-Kronrod
+// in (theta_m, phi_m), with theta split at multiples of the roughness (so narrow lobes are
+// resolved) and at the horizon of a view direction (so the clamped dot product's kink is a
+// piece boundary, not inside a piece).
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "core/math.h"
+#include "core/quadrature.h"
+
+namespace gonio::test {
+
+// Integral over the upper hemisphere of g(m) dw_m, g smooth except at the breakpoints.
+// `scale` is the narrowest angular feature of g; `v`, if v.z < 1, adds the great circle v.m = 0.
+inline double hemisphere_integral(const std::function<double(const Vec3&)>& g, double scale,
+                                  const Vec3* v = nullptr, double tol = 1e-11) {
+    std::vector<double> phi_breaks{0.0, kTwoPi};
+    double phi_v = 0, sin_v = 0;
+    if (v) {
+        phi_v = spherical_phi(*v);
+        sin_v = std::sqrt(std::max(0.0, 1 - v->z * v->z));
+        for (double p : {phi_v + kPi / 2, phi_v + 3 * kPi / 2}) phi_breaks.push_back(std::fmod(p, kTwoPi));
+    }
+    std::sort(phi_breaks.begin(), phi_breaks.end());
+    auto over_theta = [&](double phi) {
+        std::vector<double> breaks{0.0};
+        for (double t = scale; t < kPi / 2; t *= 2) breaks.push_back(t);
+        double top = kPi / 2;
+        if (v) { // v.m = sin t sin tv cos(p - pv) + cos t cos tv = 0
+            const double c = sin_v * std::cos(phi - phi_v);
+            if (c < 0) top = std::min(top, std::atan2(v->z, -c));
+        }
+        breaks.push_back(top);
+        double sum = 0;
+        for (size_t k = 0; k + 1 < breaks.size(); ++k) {
+            const double a = breaks[k], b = std::min(breaks[k + 1], top);
+            if (b <= a) break;
+            sum += integrate_adaptive(
+                [&](double t) { return g(spherical_direction(t, phi)) * std::sin(t); }, a, b,
+                1e-15, tol);
+        }
+        return sum;
+    };
+    double total = 0;
+    for (size_t k = 0; k + 1 < phi_breaks.size(); ++k)
+        total += integrate_adaptive(over_theta, phi_breaks[k], phi_breaks[k + 1], 1e-15, tol);
+    return total;
+}
+
+} // namespace gonio::test
