@@ -18,16 +18,26 @@ struct Rect {
 class CellIntegrator {
   public:
     CellIntegrator(const MicrofacetModel& model, const Vec3& wi, const CellQuadrature& q)
-        : model_(model), wi_(wi), q_(q), rule_(gauss_legendre(q.points)),
-          nc_(model.channels()), mirror_{-wi.x, -wi.y, wi.z},
-          narrow_(model.ndf().narrowest_feature()), wide_(model.ndf().widest_feature()) {}
+        : model_(model), wi_(wi), q_(q), rule_(gauss_legendre(q.points)), nc_(model.channels()) {
+        const double narrow = model.ndf().narrowest_feature(), wide = model.ndf().widest_feature();
+        theta_r_ = spherical_theta(wi);
+        phi_r_ = spherical_phi({-wi.x, -wi.y, wi.z});
+        // The reflected lobe around the mirror direction: tilting h by d in the plane of incidence
+        // moves o by about 2d in theta, tilting it sideways moves o by only 2 d (i.h) across, and
+        // i.h ~ cos(theta_i) + (polar offset of o)/2. At grazing incidence even a broad lobe has a
+        // spike of width ~2 alpha cos(theta_i) at the mirror direction. Conservative (halved)
+        // widths, and a reach of 6 slope widths:
+        narrow_ = narrow;
+        cos_i_ = wi.z;
+        width_polar_ = narrow;
+        reach_polar_ = 12.0 * wide;
+        reach_across_ = 12.0 * wide * std::min(1.0, wi.z + 12.0 * wide);
+    }
 
     void integrate(const Rect& r, double* out) const {
         std::vector<double> coarse(nc_, 0.0);
         gauss(r, coarse.data());
-        double scale = 0;
-        for (double v : coarse) scale = std::max(scale, std::abs(v));
-        refine(r, coarse.data(), std::max(q_.rel_tol * scale, 1e-15), 0, out);
+        refine(r, coarse.data(), 0, out);
     }
 
   private:
@@ -49,37 +59,72 @@ class CellIntegrator {
         }
     }
 
-    // True while the rectangle could hide a lobe feature: wider than the narrowest feature and
-    // within reach of the specular direction (lobes of the centred NDFs sit around it).
-    bool must_split(const Rect& r) const {
+    // Angular extents of a rectangle: polar, and azimuthal at its widest.
+    static void extents(const Rect& r, double& polar, double& azimuthal) {
         const double t0 = std::acos(std::min(1.0, r.z1)), t1 = std::acos(std::max(0.0, r.z0));
-        const double dt = t1 - t0, dp = (r.p1 - r.p0) * std::sin(t1);
-        const double size = std::sqrt(dt * dt + dp * dp);
-        if (size <= 0.5 * narrow_) return false;
-        const double zc = 0.5 * (r.z0 + r.z1), pc = 0.5 * (r.p0 + r.p1);
-        const double sc = std::sqrt(std::max(0.0, 1.0 - zc * zc));
-        const Vec3 centre{sc * std::cos(pc), sc * std::sin(pc), zc};
-        // The reflected lobe is about twice as wide as the normal distribution's.
-        return angle_between(centre, mirror_) < size + 12.0 * wide_;
+        polar = t1 - t0;
+        azimuthal = (r.p1 - r.p0) * std::sin(t1);
     }
 
-    void refine(const Rect& r, const double* coarse, double tol, int depth, double* out) const {
-        const double zm = 0.5 * (r.z0 + r.z1), pm = 0.5 * (r.p0 + r.p1);
-        const Rect kids[4] = {{r.z0, zm, r.p0, pm}, {zm, r.z1, r.p0, pm},
-                              {r.z0, zm, pm, r.p1}, {zm, r.z1, pm, r.p1}};
-        std::vector<double> part(4 * nc_, 0.0);
-        for (int k = 0; k < 4; ++k) gauss(kids[k], &part[k * nc_]);
-        double err = 0;
-        for (int c = 0; c < nc_; ++c) {
-            const double fine = part[c] + part[nc_ + c] + part[2 * nc_ + c] + part[3 * nc_ + c];
-            err = std::max(err, std::abs(fine - coarse[c]));
+    // True while the rectangle could hide a lobe feature: wider than the lobe in theta or across,
+    // and within reach of the mirror direction (lobes of the centred NDFs sit around it).
+    // `split_polar` tells which side to halve: the one largest relative to the lobe's width.
+    bool must_split(const Rect& r, bool& split_polar) const {
+        double dt, dp;
+        extents(r, dt, dp);
+        // Distances from the mirror direction to the rectangle's theta and phi intervals.
+        const double t0 = std::acos(std::min(1.0, r.z1)), t1 = std::acos(std::max(0.0, r.z0));
+        const double off_polar = std::max({0.0, t0 - theta_r_, theta_r_ - t1});
+        double off_phi = 0;
+        if (!(phi_r_ >= r.p0 && phi_r_ <= r.p1)) {
+            const double a = std::abs(phi_r_ - r.p0), b = std::abs(phi_r_ - r.p1);
+            off_phi = std::min({a, kTwoPi - a, b, kTwoPi - b});
         }
-        if (depth >= q_.max_depth || (err <= tol && !must_split(r))) {
-            for (int k = 0; k < 4; ++k)
+        // Measured at the polar angle closest to the mirror direction (0 at the pole).
+        const double across = off_phi * std::sin(std::clamp(theta_r_, t0, t1));
+        if (off_polar > reach_polar_ || across > reach_across_) return false;
+        const double width_across = narrow_ * std::max(cos_i_ + 0.5 * off_polar, 1e-4);
+        const double rel_t = dt / width_polar_, rel_p = dp / width_across;
+        if (rel_t <= 0.5 && rel_p <= 0.5) return false;
+        split_polar = rel_t >= rel_p;
+        return true;
+    }
+
+    // Halves the longer angular side (near the pole, thin azimuthal wedges need no further
+    // azimuthal splits), or the side the lobe needs resolved. A rectangle is accepted when splitting changes its integral by
+    // less than rel_tol of that integral, or by less than an absolute floor proportional to its
+    // solid angle (rel_tol * 1e-4 of the hemisphere's share), so negligible regions stop early.
+    void refine(const Rect& r, const double* coarse, int depth, double* out) const {
+        double dt, dp;
+        extents(r, dt, dp);
+        bool split_polar = dt >= dp;
+        const bool forced = must_split(r, split_polar);
+        Rect kids[2];
+        if (split_polar) {
+            const double zm = 0.5 * (r.z0 + r.z1);
+            kids[0] = {r.z0, zm, r.p0, r.p1};
+            kids[1] = {zm, r.z1, r.p0, r.p1};
+        } else {
+            const double pm = 0.5 * (r.p0 + r.p1);
+            kids[0] = {r.z0, r.z1, r.p0, pm};
+            kids[1] = {r.z0, r.z1, pm, r.p1};
+        }
+        std::vector<double> part(2 * nc_, 0.0);
+        for (int k = 0; k < 2; ++k) gauss(kids[k], &part[k * nc_]);
+        double err = 0, magnitude = 0;
+        for (int c = 0; c < nc_; ++c) {
+            const double fine = part[c] + part[nc_ + c];
+            err = std::max(err, std::abs(fine - coarse[c]));
+            magnitude = std::max(magnitude, std::abs(fine));
+        }
+        const double area = (r.z1 - r.z0) * (r.p1 - r.p0);
+        const double tol = q_.rel_tol * (magnitude + 1e-4 * area / kTwoPi);
+        if (depth >= q_.max_depth || (err <= tol && !forced)) {
+            for (int k = 0; k < 2; ++k)
                 for (int c = 0; c < nc_; ++c) out[c] += part[k * nc_ + c];
             return;
         }
-        for (int k = 0; k < 4; ++k) refine(kids[k], &part[k * nc_], 0.5 * tol, depth + 1, out);
+        for (int k = 0; k < 2; ++k) refine(kids[k], &part[k * nc_], depth + 1, out);
     }
 
     const MicrofacetModel& model_;
@@ -87,8 +132,9 @@ class CellIntegrator {
     CellQuadrature q_;
     const GaussLegendre& rule_;
     int nc_;
-    Vec3 mirror_;
-    double narrow_, wide_;
+    double theta_r_ = 0, phi_r_ = 0;
+    double narrow_ = 0, cos_i_ = 1;
+    double width_polar_ = 0, reach_polar_ = 0, reach_across_ = 0;
 };
 
 } // namespace
