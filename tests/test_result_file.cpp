@@ -1,1 +1,205 @@
+// End-to-end: the gonio binary, its exit codes and messages, and the HDF5 result file.
 #include <doctest/doctest.h>
+#include <hdf5.h>
+#include <hdf5_hl.h>
+#include <sys/wait.h>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "gonio/io/hdf5_handles.h"
+#include "gonio/io/result_reader.h"
+
+namespace fs = std::filesystem;
+using namespace gonio;
+
+namespace {
+struct Run {
+    int code;
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Runs the gonio binary with arguments (shell-quoted by the caller) in `dir`.
+Run run_gonio(const fs::path& dir, const std::string& args) {
+    const std::string cmd = "cd '" + dir.string() + "' && '" + GONIO_BINARY + "' " + args +
+                            " > stdout.txt 2> stderr.txt < /dev/null";
+    const int status = std::system(cmd.c_str());
+    Run r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "stdout.txt"),
+          slurp(dir / "stderr.txt")};
+    fs::remove(dir / "stdout.txt");
+    fs::remove(dir / "stderr.txt");
+    return r;
+}
+
+fs::path fresh_dir(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / ("gonio_test_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+int files_in(const fs::path& d) {
+    int n = 0;
+    for (const auto& e : fs::directory_iterator(d)) n += e.is_regular_file();
+    return n;
+}
+
+const char* kSmall = R"(seed = 3
+[ndf]
+type = "beckmann"
+alpha = 0.5
+[beam]
+theta_i = [0, 60]
+phi_i = [0, 90]
+[sensor]
+cells = 145
+[[case]]
+name = "mirror"
+[[case]]
+name = "gold"
+material = { type = "conductor", ior = "Au" }
+)";
+} // namespace
+
+TEST_CASE("gonio model writes a complete result file that gonio info reads") {
+    const fs::path d = fresh_dir("model");
+    write(d / "small.toml", kSmall);
+    const Run r = run_gonio(d, "model small.toml -o out.h5 --quiet");
+    CHECK(r.code == 0);
+    CHECK(r.err.empty());
+    REQUIRE(fs::exists(d / "out.h5"));
+    CHECK(files_in(d) == 2); // the config and the result: no temporary file left behind
+
+    const ResultSummary s = read_result_summary((d / "out.h5").string());
+    CHECK(s.seed == 3);
+    CHECK(s.attributes.at("config_toml") == kSmall);
+    CHECK(s.attributes.at("command_line").find("model small.toml") != std::string::npos);
+    CHECK(!s.attributes.at("git_hash").empty());
+    REQUIRE(s.cases.size() == 2);
+    CHECK(s.cases[0].name == "mirror");
+    CHECK(s.cases[1].channels == 3);
+    CHECK(s.cases[1].wavelength_nm == std::vector<double>{650, 550, 450});
+    const std::vector<double>& albedo = s.cases[0].albedos.at("model_l1_albedo");
+    REQUIRE(albedo.size() == 4); // 2 theta_i x 2 phi_i x 1 channel
+    CHECK(std::abs(albedo[0] - 0.9430) < 1e-3); // Beckmann 0.5, normal incidence (DESIGN section 9)
+    CHECK(albedo[0] == doctest::Approx(albedo[1]).epsilon(1e-12)); // isotropic: phi_i does not matter
+
+    const Run info = run_gonio(d, "info out.h5 --json");
+    CHECK(info.code == 0);
+    CHECK(info.out.find("\"model_l1_albedo\": [0.94") != std::string::npos);
+    CHECK(info.out.find("\"theta_i\": 60, \"phi_i\": 90") != std::string::npos);
+    const Run text = run_gonio(d, "info out.h5");
+    CHECK(text.code == 0);
+    CHECK(text.out.find("case gold") != std::string::npos);
+    fs::remove_all(d);
+}
+
+TEST_CASE("result file: cell coordinates are attached dimension scales with units") {
+    const fs::path d = fresh_dir("scales");
+    write(d / "small.toml", kSmall);
+    REQUIRE(run_gonio(d, "model small.toml -o out.h5 -q").code == 0);
+    h5::silence_errors();
+    h5::Handle file(H5Fopen((d / "out.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open");
+    h5::Handle group(H5Gopen2(file, "gold", H5P_DEFAULT), H5Gclose, "group");
+    h5::Handle brdf(H5Dopen2(group, "model_l1", H5P_DEFAULT), H5Dclose, "model_l1");
+    CHECK(H5DSget_num_scales(brdf, 0) == 1);
+    CHECK(H5DSget_num_scales(brdf, 2) >= 9); // cell, theta/phi centre, bounds, solid angles
+    CHECK(H5DSget_num_scales(brdf, 3) == 2); // channel and wavelength
+    for (const char* name : {"theta_center", "phi_center", "theta_min", "theta_max", "phi_min",
+                             "phi_max", "solid_angle", "projected_solid_angle"}) {
+        CAPTURE(name);
+        h5::Handle scale(H5Dopen2(group, name, H5P_DEFAULT), H5Dclose, name);
+        CHECK(H5DSis_scale(scale) > 0);
+        CHECK(H5DSis_attached(brdf, scale, 2) > 0);
+        const std::string units = h5::read_string_attribute(scale, "units");
+        CHECK((units == "degree" || units == "sr"));
+    }
+    CHECK(h5::read_string_attribute(brdf, "units") == "1/sr");
+    // The BRDF is the cell energy over the projected solid angle.
+    std::vector<hsize_t> dims;
+    const std::vector<double> f = h5::read_doubles(group, "model_l1", &dims);
+    const std::vector<double> e = h5::read_doubles(group, "model_l1_energy");
+    const std::vector<double> proj = h5::read_doubles(group, "projected_solid_angle");
+    REQUIRE(dims == std::vector<hsize_t>{2, 2, 145, 3});
+    for (size_t k = 0; k < f.size(); k += 97)
+        CHECK(f[k] == doctest::Approx(e[k] / proj[(k / 3) % 145]).epsilon(1e-14));
+    fs::remove_all(d);
+}
+
+TEST_CASE("a bad config: one line naming file, line and key; exit code 2; no output file") {
+    const fs::path d = fresh_dir("bad");
+    write(d / "bad.toml", "[ndf]\ntype = \"beckmann\"\nalhpa = 0.5\n[beam]\ntheta_i = 0\n");
+    const Run r = run_gonio(d, "model bad.toml -o out.h5");
+    CHECK(r.code == 2);
+    CHECK(r.err == "gonio: error: bad.toml:3: key 'ndf.alhpa': unknown key (did you mean 'alpha'?); "
+                   "allowed here: type, alpha, alpha_x, alpha_y\n");
+    CHECK(files_in(d) == 1); // only bad.toml
+
+    write(d / "range.toml", "[ndf]\ntype = \"ggx\"\nalpha = -1\n[beam]\ntheta_i = 0\n");
+    const Run range = run_gonio(d, "model range.toml -o out.h5");
+    CHECK(range.code == 2);
+    CHECK(range.err.find("range.toml:3: key 'ndf.alpha': value -1 is out of range; allowed [1e-06, 100]") !=
+          std::string::npos);
+    const Run missing = run_gonio(d, "model nothere.toml -o out.h5");
+    CHECK(missing.code == 2);
+    CHECK(missing.err.find("nothere.toml: cannot open the config file") != std::string::npos);
+    const Run set = run_gonio(d, "model range.toml --set ndf.alpha=0.3 --set beam.theta_i=95 -o out.h5");
+    CHECK(set.code == 2);
+    CHECK(set.err.find("key 'beam.theta_i': value 95 is out of range; allowed [0, 90)") != std::string::npos);
+    CHECK(files_in(d) == 2); // bad.toml, range.toml
+    fs::remove_all(d);
+}
+
+TEST_CASE("an existing result is not replaced without --overwrite") {
+    const fs::path d = fresh_dir("overwrite");
+    write(d / "small.toml", kSmall);
+    write(d / "out.h5", "precious");
+    const Run r = run_gonio(d, "model small.toml -o out.h5 -q");
+    CHECK(r.code != 0);
+    CHECK(r.err.find("out.h5: exists; pass --overwrite") != std::string::npos);
+    CHECK(slurp(d / "out.h5") == "precious");
+    CHECK(files_in(d) == 2);
+    CHECK(run_gonio(d, "model small.toml -o out.h5 -q --overwrite").code == 0);
+    CHECK(read_result_summary((d / "out.h5").string()).cases.size() == 2);
+    const Run info = run_gonio(d, "info small.toml");
+    CHECK(info.code == 1);
+    CHECK(info.err.find("small.toml: not an HDF5 file") != std::string::npos);
+    fs::remove_all(d);
+}
+
+TEST_CASE("results do not depend on the thread count") {
+    const fs::path d = fresh_dir("threads");
+    write(d / "small.toml", kSmall);
+    REQUIRE(run_gonio(d, "model small.toml -o one.h5 -q --threads 1").code == 0);
+    REQUIRE(run_gonio(d, "model small.toml -o two.h5 -q --threads 2").code == 0);
+    h5::silence_errors();
+    for (const char* c : {"mirror", "gold"}) {
+        std::vector<double> a, b;
+        {
+            h5::Handle f(H5Fopen((d / "one.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open");
+            h5::Handle g(H5Gopen2(f, c, H5P_DEFAULT), H5Gclose, "group");
+            a = h5::read_doubles(g, "model_l1");
+        }
+        {
+            h5::Handle f(H5Fopen((d / "two.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open");
+            h5::Handle g(H5Gopen2(f, c, H5P_DEFAULT), H5Gclose, "group");
+            b = h5::read_doubles(g, "model_l1");
+        }
+        CHECK(a == b);
+    }
+    fs::remove_all(d);
+}

@@ -170,8 +170,11 @@ class Loader {
         return c;
     }
 
-    void load_ndf(CaseConfig& c, TableReader r) {
-        c.ndf.type = r.string("type", {"beckmann", "ggx"});
+    void load_ndf(CaseConfig& c, TableReader all) {
+        c.ndf.type = all.string("type", {"beckmann", "ggx"});
+        // Roughness keys go together: a case that gives any of them replaces the defaults' ones.
+        const bool own = all.has_own("alpha") || all.has_own("alpha_x") || all.has_own("alpha_y");
+        TableReader r = own ? all.own() : all;
         const bool iso = r.has("alpha");
         const bool aniso = r.has("alpha_x") || r.has("alpha_y");
         if (iso && aniso)

@@ -58,20 +58,27 @@ void apply_override(toml::table& root, const std::string& assignment, const std:
             // An array of tables ([[case]]): the next segment picks an element.
             if (i + 2 >= parts.size())
                 throw ConfigError(file, 0, path, "--set cannot replace a whole array of tables");
-            const std::string& pick = parts[++i];
+            // A name may itself contain dots ("beckmann_0.5"): try the longest match first.
+            const size_t first = ++i;
+            std::string pick = parts[first];
             toml::table* chosen = nullptr;
             if (is_index(pick)) {
                 const size_t k = std::stoul(pick);
                 if (k < arr->size()) chosen = (*arr)[k].as_table();
-            } else {
+            }
+            for (size_t last = parts.size() - 2; !chosen && last >= first; --last) {
+                std::string name = parts[first];
+                for (size_t j = first + 1; j <= last; ++j) name += "." + parts[j];
                 for (auto& e : *arr)
                     if (toml::table* t = e.as_table())
-                        if (auto name = (*t)["name"].value<std::string>(); name && *name == pick)
+                        if (auto n = (*t)["name"].value<std::string>(); n && *n == name) {
                             chosen = t;
+                            i = last;
+                        }
             }
             if (!chosen)
                 throw ConfigError(file, 0, path,
-                                  "no element '" + pick + "' in '" + parts[i - 1] +
+                                  "no element '" + pick + "' in '" + parts[first - 1] +
                                       "' (use an index from 0 to " +
                                       std::to_string(arr->size() - 1) + " or a case name)");
             table = chosen;

@@ -54,6 +54,12 @@ TableReader::Found TableReader::find(const std::string& key) const {
 }
 
 bool TableReader::has(const std::string& key) const { return find(key).node != nullptr; }
+bool TableReader::has_own(const std::string& key) const {
+    return section_ && section_->get(key) != nullptr;
+}
+TableReader TableReader::own() const {
+    return TableReader(section_, section_path_, nullptr, defaults_path_, file_, usage_);
+}
 bool TableReader::is_string(const std::string& key) const {
     const Found f = find(key);
     return f.node && f.node->is_string();

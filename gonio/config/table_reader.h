@@ -38,6 +38,10 @@ class TableReader {
                 std::string defaults_path, std::string file, UsageTracker& usage);
 
     bool has(const std::string& key) const;
+    // True if the case's own section gives the key (not only the defaults).
+    bool has_own(const std::string& key) const;
+    // The same reader without the defaults: for keys that must be given together.
+    TableReader own() const;
     // The message key and line of a key (where it was found, else the section).
     std::string key_path(const std::string& key) const;
     int line_of(const std::string& key) const;

@@ -39,8 +39,12 @@ ResultWriter::ResultWriter(std::string path, bool overwrite) : path_(std::move(p
     if (!overwrite && std::filesystem::exists(path_))
         throw std::runtime_error(path_ + ": exists; pass --overwrite to replace it");
     tmp_path_ = path_ + ".tmp-" + std::to_string(::getpid());
-    file_ = h5::Handle(H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
-                       H5Fclose, ("create " + tmp_path_).c_str());
+    // Track link creation order so readers list the cases in config order, not by name.
+    h5::Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "file creation property list");
+    h5::check(H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
+              "H5Pset_link_creation_order");
+    file_ = h5::Handle(H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT), H5Fclose,
+                       ("create " + tmp_path_).c_str());
 }
 
 ResultWriter::~ResultWriter() {
@@ -72,8 +76,11 @@ void ResultWriter::write_run(const Config& cfg, const std::string& command_line)
 void ResultWriter::write_model_case(const CaseConfig& c, const BeckersSensor& sensor,
                                     const ModelL1Result& r) {
     using h5::Handle;
-    Handle group(H5Gcreate2(file_, c.name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                 H5Gclose, ("create group " + c.name).c_str());
+    Handle gcpl(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, "group creation property list");
+    h5::check(H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
+              "H5Pset_link_creation_order");
+    Handle group(H5Gcreate2(file_, c.name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose,
+                 ("create group " + c.name).c_str());
     h5::write_string_attribute(group, "name", c.name);
     h5::write_string_attribute(group, "ndf", make_ndf(c.ndf)->describe());
     h5::write_string_attribute(group, "material", c.material_type);

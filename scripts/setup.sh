@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs gonio's Debian packages (as root, idempotent) and builds it in build/ (Release).
+# Usage: bash scripts/setup.sh [--sanitize]
+#   --sanitize   build in build-asan/ with AddressSanitizer and UndefinedBehaviorSanitizer
+# Extra CMake arguments may be given in GONIO_CMAKE_ARGS (e.g. -DGONIO_WERROR=ON).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake pkg-config git
+  libembree-dev libfftw3-dev libopenexr-dev libhdf5-dev libtbb-dev
+  libcli11-dev libtomlplusplus-dev doctest-dev
+  python3-h5py python3-numpy python3-matplotlib
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  if [[ $(id -u) -ne 0 ]]; then
+    echo "setup: need root to install: ${missing[*]}" >&2
+    exit 1
+  fi
+  echo "setup: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${packages[@]}" > /dev/null
+fi
+
+build=build
+args=(-DCMAKE_BUILD_TYPE=Release)
+if [[ "${1:-}" == "--sanitize" ]]; then
+  build=build-asan
+  args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DGONIO_SANITIZE=ON)
+fi
+# shellcheck disable=SC2206
+extra=(${GONIO_CMAKE_ARGS:-})
+cmake -S . -B "$build" "${args[@]}" "${extra[@]}" > /dev/null
+cmake --build "$build" -j "$(nproc)"
