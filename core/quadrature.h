@@ -15,7 +15,8 @@ const GaussLegendre& gauss_legendre(int n);
 
 // Adaptive Gauss-Kronrod (7/15) integral of f over [a, b]. Subdivides until the Kronrod-Gauss
 // difference of each piece is below max(abs_tol, rel_tol * |whole|) scaled by the piece's share
-// of [a, b], or max_depth is reached.
+// of [a, b], or max_depth is reached. Like every adaptive rule it cannot find a feature that none
+// of its first nodes sample: split [a, b] at known peaks and at kinks.
 double integrate_adaptive(const std::function<double(double)>& f, double a, double b,
                           double abs_tol = 1e-12, double rel_tol = 1e-10, int max_depth = 40);
 
