@@ -85,6 +85,8 @@ ChiSquareResult chi_square_test(const std::vector<double>& observed,
     return r;
 }
 
-double sidak_level(double alpha, int tests) { return 1 - std::pow(1 - alpha, 1.0 / tests); }
+double sidak_level(double alpha, int tests) {
+    return 1 - std::pow(1 - alpha, 1.0 / tests);
+}
 
 } // namespace gonio

@@ -14,8 +14,8 @@ struct ChiSquareResult {
     double statistic = 0;
     int dof = 0;
     double p_value = 1;
-    int pooled_bins = 0;        // bins with expected < min_expected, merged into one
-    std::string failure;        // non-empty: an impossible observation (count where none expected)
+    int pooled_bins = 0; // bins with expected < min_expected, merged into one
+    std::string failure; // non-empty: an impossible observation (count where none expected)
 };
 
 // Bins whose expected count is below min_expected are pooled into one bin (pbrt-v4, Mitsuba 3).

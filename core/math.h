@@ -11,8 +11,12 @@ inline constexpr double kPi = 3.14159265358979323846;
 inline constexpr double kTwoPi = 2.0 * kPi;
 inline constexpr double kInvPi = 1.0 / kPi;
 
-inline constexpr double radians(double degrees) { return degrees * (kPi / 180.0); }
-inline constexpr double degrees(double radians) { return radians * (180.0 / kPi); }
+inline constexpr double radians(double degrees) {
+    return degrees * (kPi / 180.0);
+}
+inline constexpr double degrees(double radians) {
+    return radians * (180.0 / kPi);
+}
 
 struct Vec3 {
     double x = 0, y = 0, z = 0;
@@ -24,13 +28,21 @@ struct Vec3 {
     constexpr Vec3 operator*(double s) const { return {x * s, y * s, z * s}; }
     constexpr Vec3 operator/(double s) const { return {x / s, y / s, z / s}; }
 };
-inline constexpr Vec3 operator*(double s, const Vec3& v) { return v * s; }
-inline constexpr double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline constexpr Vec3 operator*(double s, const Vec3& v) {
+    return v * s;
+}
+inline constexpr double dot(const Vec3& a, const Vec3& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 inline constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double length(const Vec3& v) { return std::sqrt(dot(v, v)); }
-inline Vec3 normalize(const Vec3& v) { return v / length(v); }
+inline double length(const Vec3& v) {
+    return std::sqrt(dot(v, v));
+}
+inline Vec3 normalize(const Vec3& v) {
+    return v / length(v);
+}
 
 // Unit vector of spherical angles (radians).
 inline Vec3 spherical_direction(double theta, double phi) {
@@ -38,7 +50,9 @@ inline Vec3 spherical_direction(double theta, double phi) {
     return {s * std::cos(phi), s * std::sin(phi), std::cos(theta)};
 }
 // theta in [0, pi], from z clamped to [-1, 1].
-inline double spherical_theta(const Vec3& v) { return std::acos(std::clamp(v.z, -1.0, 1.0)); }
+inline double spherical_theta(const Vec3& v) {
+    return std::acos(std::clamp(v.z, -1.0, 1.0));
+}
 // phi in [0, 2 pi).
 inline double spherical_phi(const Vec3& v) {
     const double p = std::atan2(v.y, v.x);
@@ -50,6 +64,8 @@ inline double angle_between(const Vec3& a, const Vec3& b) {
                           : kPi - 2.0 * std::asin(std::min(1.0, length(a + b) / 2));
 }
 // Mirror reflection of v about the normal m (both pointing away from the surface).
-inline constexpr Vec3 reflect(const Vec3& v, const Vec3& m) { return 2.0 * dot(v, m) * m - v; }
+inline constexpr Vec3 reflect(const Vec3& v, const Vec3& m) {
+    return 2.0 * dot(v, m) * m - v;
+}
 
 } // namespace gonio

@@ -1,12 +1,12 @@
 #include "core/quadrature.h"
 
+#include "core/math.h"
+
 #include <array>
 #include <cmath>
 #include <map>
 #include <mutex>
 #include <stdexcept>
-
-#include "core/math.h"
 
 namespace gonio {
 

@@ -15,7 +15,10 @@ inline double erfc_inverse_upper(double t) {
     s = std::clamp(s, lo, hi);
     for (int i = 0; i < 200; ++i) {
         const double h = std::erfc(s) - t;
-        if (h > 0) lo = s; else hi = s;
+        if (h > 0)
+            lo = s;
+        else
+            hi = s;
         const double dh = -1.1283791670955126 * std::exp(-s * s); // d erfc / ds
         double next = dh != 0 ? s - h / dh : 0.5 * (lo + hi);
         if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);

@@ -1,16 +1,16 @@
 // gonio: a virtual gonioreflectometer for explicit microfacet surfaces. See README.md.
-#include <CLI/CLI.hpp>
-
-#include <cstdio>
-#include <exception>
-
 #include "gonio/cli/commands.h"
 #include "gonio/config/config_error.h"
 #include "gonio_version.h"
 
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
 int main(int argc, char** argv) {
     CLI::App app{"gonio: a virtual gonioreflectometer for microfacet surfaces"};
-    app.set_version_flag("--version", std::string(gonio::kVersion) + " (git " + gonio::kGitHash + ")");
+    app.set_version_flag("--version",
+                         std::string(gonio::kVersion) + " (git " + gonio::kGitHash + ")");
     app.require_subcommand(1);
 
     std::string command_line;

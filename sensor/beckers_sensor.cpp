@@ -18,11 +18,12 @@ BeckersSensor::BeckersSensor(int cells) : n_(cells) {
     while (caps.back() > 1) {
         const int outer = caps.back();
         const double inner_theta = theta - step;
-        // S_l = round(S_{l-1} sin^2(theta_l/2) / sin^2(theta_{l-1}/2)) = round(N (1 - cos theta_l)).
-        int s = inner_theta > 0 ? static_cast<int>(std::lround(n_ * (1 - std::cos(inner_theta))))
-                                : 0;
-        if (s < 7) s = 1;                    // a small cap becomes one polar cell
-        if (s >= outer) s = outer - 1;       // always progress (only matters for tiny N)
+        // S_l = round(S_{l-1} sin^2(theta_l/2) / sin^2(theta_{l-1}/2)) = round(N (1 - cos
+        // theta_l)).
+        int s =
+            inner_theta > 0 ? static_cast<int>(std::lround(n_ * (1 - std::cos(inner_theta)))) : 0;
+        if (s < 7) s = 1;              // a small cap becomes one polar cell
+        if (s >= outer) s = outer - 1; // always progress (only matters for tiny N)
         s = std::max(s, 1);
         caps.push_back(s);
         theta = std::acos(1.0 - static_cast<double>(s) / n_);

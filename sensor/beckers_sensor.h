@@ -12,20 +12,20 @@
 //
 // The transmission sensor below the surface is the mirror image of this one through the plane
 // z = 0: cell c of the lower sensor holds the directions whose mirror image lies in cell c.
-#include <vector>
-
 #include "core/math.h"
+
+#include <vector>
 
 namespace gonio {
 
 struct SensorCell {
     int ring = 0;
-    double theta_min = 0, theta_max = 0; // radians, from the sensor's pole (+z, or -z below)
-    double phi_min = 0, phi_max = 0;     // radians, in [0, 2 pi]
+    double theta_min = 0, theta_max = 0;     // radians, from the sensor's pole (+z, or -z below)
+    double phi_min = 0, phi_max = 0;         // radians, in [0, 2 pi]
     double theta_center = 0, phi_center = 0; // the cell's equal-area midpoint
-    Vec3 center;                         // unit direction of (theta_center, phi_center), upper side
-    double solid_angle = 0;              // sr; 2 pi / N up to round-off
-    double projected_solid_angle = 0;    // sr; integral of cos(theta) over the cell
+    Vec3 center;                      // unit direction of (theta_center, phi_center), upper side
+    double solid_angle = 0;           // sr; 2 pi / N up to round-off
+    double projected_solid_angle = 0; // sr; integral of cos(theta) over the cell
 };
 
 class BeckersSensor {
@@ -53,9 +53,9 @@ class BeckersSensor {
 
   private:
     int n_;
-    std::vector<int> ring_first_;    // ring r holds cells [ring_first_[r], ring_first_[r+1]);
-                                     // ring_first_[r] is also the cells inside the cap of ring r
-    std::vector<double> ring_cos_;   // cos of the outer boundary of cap r: 1 - ring_first_[r] / N
+    std::vector<int> ring_first_;  // ring r holds cells [ring_first_[r], ring_first_[r+1]);
+                                   // ring_first_[r] is also the cells inside the cap of ring r
+    std::vector<double> ring_cos_; // cos of the outer boundary of cap r: 1 - ring_first_[r] / N
     std::vector<SensorCell> cells_;
 };
 

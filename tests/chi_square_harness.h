@@ -2,14 +2,14 @@
 // The shared chi-square test of a direction sampler against its pdf (pbrt-v4 and Mitsuba 3 style):
 // bin samples on an equal-area Beckers partition of the hemisphere, integrate the pdf over every
 // cell for the expected counts, pool low-count cells, and return Pearson's statistic and p-value.
-#include <cstdint>
-#include <functional>
-#include <vector>
-
 #include "core/chi_square.h"
 #include "core/quadrature.h"
 #include "core/random.h"
 #include "sensor/beckers_sensor.h"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
 
 namespace gonio::test {
 
@@ -18,9 +18,9 @@ struct DirectionChiSquare {
     double pdf_integral = 0; // integral of the pdf over the hemisphere (should be 1)
 };
 
-inline DirectionChiSquare chi_square_directions(
-    const std::function<Vec3(double, double)>& sample, const std::function<double(const Vec3&)>& pdf,
-    int samples, int cells, std::uint64_t seed) {
+inline DirectionChiSquare chi_square_directions(const std::function<Vec3(double, double)>& sample,
+                                                const std::function<double(const Vec3&)>& pdf,
+                                                int samples, int cells, std::uint64_t seed) {
     const BeckersSensor sensor(cells);
     std::vector<double> observed(cells, 0.0), expected(cells, 0.0);
     Rng rng{seed, 0x5a3c};

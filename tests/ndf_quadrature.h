@@ -3,13 +3,13 @@
 // in (theta_m, phi_m), with theta split at multiples of the roughness (so narrow lobes are
 // resolved) and at the horizon of a view direction (so the clamped dot product's kink is a
 // piece boundary, not inside a piece).
+#include "core/math.h"
+#include "core/quadrature.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <vector>
-
-#include "core/math.h"
-#include "core/quadrature.h"
 
 namespace gonio::test {
 
@@ -22,7 +22,8 @@ inline double hemisphere_integral(const std::function<double(const Vec3&)>& g, d
     if (v) {
         phi_v = spherical_phi(*v);
         sin_v = std::sqrt(std::max(0.0, 1 - v->z * v->z));
-        for (double p : {phi_v + kPi / 2, phi_v + 3 * kPi / 2}) phi_breaks.push_back(std::fmod(p, kTwoPi));
+        for (double p : {phi_v + kPi / 2, phi_v + 3 * kPi / 2})
+            phi_breaks.push_back(std::fmod(p, kTwoPi));
     }
     std::sort(phi_breaks.begin(), phi_breaks.end());
     auto over_theta = [&](double phi) {
@@ -39,8 +40,8 @@ inline double hemisphere_integral(const std::function<double(const Vec3&)>& g, d
             const double a = breaks[k], b = std::min(breaks[k + 1], top);
             if (b <= a) break;
             sum += integrate_adaptive(
-                [&](double t) { return g(spherical_direction(t, phi)) * std::sin(t); }, a, b,
-                1e-15, tol);
+                [&](double t) { return g(spherical_direction(t, phi)) * std::sin(t); }, a, b, 1e-15,
+                tol);
         }
         return sum;
     };

@@ -1,9 +1,8 @@
-#include <doctest/doctest.h>
-
-#include <string>
-
 #include "gonio/config/config.h"
 #include "gonio/config/config_error.h"
+
+#include <doctest/doctest.h>
+#include <string>
 
 using namespace gonio;
 
@@ -27,7 +26,9 @@ ConfigError error_of(const std::string& text, const std::vector<std::string>& se
     return ConfigError("", 0, "", "");
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+bool contains(const std::string& s, const std::string& part) {
+    return s.find(part) != std::string::npos;
+}
 } // namespace
 
 TEST_CASE("the shipped quickstart config loads") {
@@ -55,8 +56,9 @@ TEST_CASE("a single-case config without [[case]] takes its name from the file") 
 }
 
 TEST_CASE("sweeps: arrays and range tables") {
-    const Config a = parse_config(std::string(kBase) + "[sensor]\ncells = 145\n", "t.toml",
-                                  {"beam.theta_i={start=0, stop=80, step=20}", "beam.phi_i=[0, 90]"});
+    const Config a =
+        parse_config(std::string(kBase) + "[sensor]\ncells = 145\n", "t.toml",
+                     {"beam.theta_i={start=0, stop=80, step=20}", "beam.phi_i=[0, 90]"});
     CHECK(a.cases[0].theta_i_deg == std::vector<double>{0, 20, 40, 60, 80});
     CHECK(a.cases[0].phi_i_deg == std::vector<double>{0, 90});
     const Config b = parse_config(kBase, "t.toml", {"beam.theta_i={start=10, stop=20, count=3}"});
@@ -71,7 +73,8 @@ name = "a"
 name = "b"
 ndf = { type = "ggx", alpha_x = 0.1, alpha_y = 0.3 }
 beam = { theta_i = 60 }
-)", "t.toml");
+)",
+                                    "t.toml");
     REQUIRE(cfg.cases.size() == 2);
     CHECK(cfg.cases[0].ndf.type == "beckmann");
     CHECK(cfg.cases[0].theta_i_deg == std::vector<double>{0, 45});
@@ -81,9 +84,11 @@ beam = { theta_i = 60 }
 }
 
 TEST_CASE("--set overrides any key, by path, case index or case name") {
-    const std::string two = std::string(kBase) + "[[case]]\nname = \"x_0.5\"\n[[case]]\nname = \"y\"\n";
-    const Config a = parse_config(two, "t.toml", {"ndf.alpha=0.25", "case.1.ndf.type=ggx",
-                                                  "case.x_0.5.beam.theta_i=[10, 20]"});
+    const std::string two =
+        std::string(kBase) + "[[case]]\nname = \"x_0.5\"\n[[case]]\nname = \"y\"\n";
+    const Config a =
+        parse_config(two, "t.toml",
+                     {"ndf.alpha=0.25", "case.1.ndf.type=ggx", "case.x_0.5.beam.theta_i=[10, 20]"});
     CHECK(a.cases[0].ndf.alpha_x == 0.25);
     CHECK(a.cases[0].theta_i_deg == std::vector<double>{10, 20});
     CHECK(a.cases[1].ndf.type == "ggx");
@@ -97,10 +102,12 @@ TEST_CASE("--set overrides any key, by path, case index or case name") {
 
 TEST_CASE("config errors name the file, the line, the key and the allowed range") {
     SUBCASE("a misspelled key") {
-        const ConfigError e = error_of("[ndf]\ntype = \"beckmann\"\nalhpa = 0.5\n[beam]\ntheta_i = 0\n");
+        const ConfigError e =
+            error_of("[ndf]\ntype = \"beckmann\"\nalhpa = 0.5\n[beam]\ntheta_i = 0\n");
         CHECK(e.line() == 3);
         CHECK(e.key() == "ndf.alhpa");
-        CHECK(contains(e.what(), "test.toml:3: key 'ndf.alhpa': unknown key (did you mean 'alpha'?)"));
+        CHECK(contains(e.what(),
+                       "test.toml:3: key 'ndf.alhpa': unknown key (did you mean 'alpha'?)"));
     }
     SUBCASE("an unknown top-level key") {
         const ConfigError e = error_of("sede = 3\n" + std::string(kBase));
@@ -108,7 +115,8 @@ TEST_CASE("config errors name the file, the line, the key and the allowed range"
         CHECK(contains(e.what(), "did you mean 'seed'"));
     }
     SUBCASE("a wrong type") {
-        const ConfigError e = error_of("[ndf]\ntype = \"ggx\"\nalpha = \"rough\"\n[beam]\ntheta_i = 0\n");
+        const ConfigError e =
+            error_of("[ndf]\ntype = \"ggx\"\nalpha = \"rough\"\n[beam]\ntheta_i = 0\n");
         CHECK(e.line() == 3);
         CHECK(contains(e.what(), "must be a number, got a string; allowed [1e-06, 100]"));
     }
@@ -117,21 +125,26 @@ TEST_CASE("config errors name the file, the line, the key and the allowed range"
         CHECK(contains(e.what(), "key 'ndf.alpha': value 0 is out of range; allowed [1e-06, 100]"));
     }
     SUBCASE("theta_i outside [0, 90)") {
-        const ConfigError e = error_of("[ndf]\ntype = \"ggx\"\nalpha = 0.2\n[beam]\ntheta_i = [0, 90]\n");
+        const ConfigError e =
+            error_of("[ndf]\ntype = \"ggx\"\nalpha = 0.2\n[beam]\ntheta_i = [0, 90]\n");
         CHECK(e.line() == 5);
         CHECK(contains(e.what(), "key 'beam.theta_i': value 90 is out of range; allowed [0, 90)"));
     }
     SUBCASE("a cell count < 1") {
         const ConfigError e = error_of(std::string(kBase) + "[sensor]\ncells = 0\n");
         CHECK(e.line() == 8);
-        CHECK(contains(e.what(), "key 'sensor.cells': value 0 is out of range; allowed [1, 10000000]"));
+        CHECK(contains(e.what(),
+                       "key 'sensor.cells': value 0 is out of range; allowed [1, 10000000]"));
     }
     SUBCASE("a cell count that is not an integer") {
-        CHECK(contains(error_of(std::string(kBase) + "[sensor]\ncells = 10.5\n").what(), "must be an integer"));
+        CHECK(contains(error_of(std::string(kBase) + "[sensor]\ncells = 10.5\n").what(),
+                       "must be an integer"));
     }
     SUBCASE("a value not in the allowed set") {
         const ConfigError e = error_of(kBase, {"ndf.type=gxx"});
-        CHECK(contains(e.what(), "\"gxx\" is not allowed (did you mean \"ggx\"?); allowed: \"beckmann\", \"ggx\""));
+        CHECK(contains(
+            e.what(),
+            "\"gxx\" is not allowed (did you mean \"ggx\"?); allowed: \"beckmann\", \"ggx\""));
     }
     SUBCASE("a missing required key") {
         const ConfigError e = error_of("[ndf]\ntype = \"ggx\"\nalpha = 0.2\n");
@@ -139,31 +152,37 @@ TEST_CASE("config errors name the file, the line, the key and the allowed range"
         CHECK(contains(e.what(), "missing (required)"));
     }
     SUBCASE("alpha and alpha_x together") {
-        CHECK(contains(error_of(kBase, {"ndf.alpha_x=0.3"}).what(), "either alpha or both alpha_x and alpha_y"));
+        CHECK(contains(error_of(kBase, {"ndf.alpha_x=0.3"}).what(),
+                       "either alpha or both alpha_x and alpha_y"));
     }
     SUBCASE("a key the case does not use") {
-        const ConfigError e = error_of(std::string(kBase) + "[material]\ntype = \"mirror\"\nior = \"Au\"\n");
+        const ConfigError e =
+            error_of(std::string(kBase) + "[material]\ntype = \"mirror\"\nior = \"Au\"\n");
         CHECK(e.key() == "material.ior");
         CHECK(e.line() == 9);
         CHECK(contains(e.what(), "is not used by any case"));
     }
     SUBCASE("a missing refractive-index table") {
-        const ConfigError e = error_of(std::string(kBase) + "[material]\ntype = \"conductor\"\nior = \"Unobtainium\"\n");
+        const ConfigError e = error_of(std::string(kBase) +
+                                       "[material]\ntype = \"conductor\"\nior = \"Unobtainium\"\n");
         CHECK(e.key() == "material.ior");
         CHECK(contains(e.what(), "Unobtainium.csv: cannot open refractive-index table"));
     }
     SUBCASE("a wavelength outside the table") {
-        const ConfigError e = error_of(std::string(kBase) +
-                                       "[material]\ntype = \"conductor\"\nior = \"Al\"\n[spectrum]\nwavelengths = [250]\n");
+        const ConfigError e = error_of(
+            std::string(kBase) +
+            "[material]\ntype = \"conductor\"\nior = \"Al\"\n[spectrum]\nwavelengths = [250]\n");
         CHECK(e.key() == "spectrum.wavelengths");
         CHECK(contains(e.what(), "allowed [300"));
     }
     SUBCASE("per-channel values that do not match the wavelengths") {
-        const ConfigError e = error_of(std::string(kBase) + "[material]\ntype = \"dielectric\"\neta = [1.5, 1.6]\n");
+        const ConfigError e =
+            error_of(std::string(kBase) + "[material]\ntype = \"dielectric\"\neta = [1.5, 1.6]\n");
         CHECK(contains(e.what(), "give one (achromatic) or one per wavelength (3)"));
     }
     SUBCASE("two cases with one name") {
-        const ConfigError e = error_of(std::string(kBase) + "[[case]]\nname = \"a\"\n[[case]]\nname = \"a\"\n");
+        const ConfigError e =
+            error_of(std::string(kBase) + "[[case]]\nname = \"a\"\n[[case]]\nname = \"a\"\n");
         CHECK(e.line() == 10);
         CHECK(contains(e.what(), "names two cases"));
     }
@@ -187,14 +206,18 @@ TEST_CASE("config errors name the file, the line, the key and the allowed range"
 }
 
 TEST_CASE("materials: channels follow what the material needs") {
-    const Config c = parse_config(std::string(kBase) + "[material]\ntype = \"conductor\"\nior = \"Cu\"\n"
-                                                       "[spectrum]\nwavelengths = [700, 600, 500, 400]\n",
-                                  "t.toml");
+    const Config c =
+        parse_config(std::string(kBase) + "[material]\ntype = \"conductor\"\nior = \"Cu\"\n"
+                                          "[spectrum]\nwavelengths = [700, 600, 500, 400]\n",
+                     "t.toml");
     CHECK(c.cases[0].fresnel.channels() == 4);
     CHECK(c.cases[0].wavelengths_nm.size() == 4);
-    const Config d = parse_config(std::string(kBase) + "[material]\ntype = \"dielectric\"\neta = 1.5\n", "t.toml");
+    const Config d = parse_config(
+        std::string(kBase) + "[material]\ntype = \"dielectric\"\neta = 1.5\n", "t.toml");
     CHECK(d.cases[0].fresnel.channels() == 1);
     CHECK(d.cases[0].wavelengths_nm.empty());
-    const Config k = parse_config(std::string(kBase) + "[material]\ntype = \"conductor\"\nn = 0.2\nk = [3, 3.5, 4]\n", "t.toml");
+    const Config k = parse_config(
+        std::string(kBase) + "[material]\ntype = \"conductor\"\nn = 0.2\nk = [3, 3.5, 4]\n",
+        "t.toml");
     CHECK(k.cases[0].fresnel.channels() == 3);
 }

@@ -1,12 +1,11 @@
-#include <doctest/doctest.h>
-
-#include <cmath>
-#include <complex>
-
 #include "core/math.h"
 #include "gonio/material/fresnel.h"
 #include "gonio/material/fresnel_term.h"
 #include "gonio/material/ior_table.h"
+
+#include <cmath>
+#include <complex>
+#include <doctest/doctest.h>
 
 using namespace gonio;
 
@@ -18,14 +17,16 @@ struct Amplitudes {
 Amplitudes amplitudes(double cos_i, double eta) {
     const double sin_t = std::sqrt(1 - cos_i * cos_i) / eta;
     const double cos_t = std::sqrt(1 - sin_t * sin_t);
-    return {(cos_i - eta * cos_t) / (cos_i + eta * cos_t), (eta * cos_i - cos_t) / (eta * cos_i + cos_t),
-            2 * cos_i / (cos_i + eta * cos_t), 2 * cos_i / (eta * cos_i + cos_t), cos_t};
+    return {(cos_i - eta * cos_t) / (cos_i + eta * cos_t),
+            (eta * cos_i - cos_t) / (eta * cos_i + cos_t), 2 * cos_i / (cos_i + eta * cos_t),
+            2 * cos_i / (eta * cos_i + cos_t), cos_t};
 }
 } // namespace
 
 TEST_CASE("dielectric Fresnel at normal incidence") {
     CHECK(fresnel_dielectric(1.0, 1.5) == doctest::Approx(0.04).epsilon(1e-14));
-    CHECK(fresnel_dielectric(1.0, 1.33) == doctest::Approx(std::pow(0.33 / 2.33, 2)).epsilon(1e-14));
+    CHECK(fresnel_dielectric(1.0, 1.33) ==
+          doctest::Approx(std::pow(0.33 / 2.33, 2)).epsilon(1e-14));
     CHECK(fresnel_dielectric(1.0, 1.0) == 0.0);
     CHECK(fresnel_dielectric(-1.0, 1.5) == doctest::Approx(0.04).epsilon(1e-14)); // from inside
     CHECK(fresnel_f0(1.5) == doctest::Approx(0.04));

@@ -1,14 +1,13 @@
-#include <doctest/doctest.h>
-#include <tbb/global_control.h>
-
-#include <cmath>
-#include <memory>
-
 #include "core/random.h"
 #include "gonio/model/cell_integrator.h"
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/ggx.h"
 #include "ndf_quadrature.h"
+
+#include <cmath>
+#include <doctest/doctest.h>
+#include <memory>
+#include <tbb/global_control.h>
 
 using namespace gonio;
 
@@ -65,7 +64,8 @@ TEST_CASE("Model L1 albedo from the cells equals an independent half-vector quad
     for (const Case& c : cases) {
         for (double theta : {0.0, 30.0, 60.0, 80.0, 89.0}) {
             const Vec3 wi = spherical_direction(radians(theta), radians(20.0));
-            const double cells = albedo_from_cells(energies(*c.ndf, *c.fresnel, c.form, wi, 3240), 1)[0];
+            const double cells =
+                albedo_from_cells(energies(*c.ndf, *c.fresnel, c.form, wi, 3240), 1)[0];
             const double reference = albedo_over_half_vectors(*c.ndf, *c.fresnel, c.form, wi);
             CAPTURE(c.ndf->describe());
             CAPTURE(theta);
@@ -81,8 +81,8 @@ TEST_CASE("Model L1 flat limit: a near-flat mirror puts everything into the spec
     const BeckersSensor sensor(3240);
     for (double theta : {0.0, 30.0, 70.0}) {
         const Vec3 wi = spherical_direction(radians(theta), radians(45.0));
-        const auto e = energies(Beckmann(1e-4), FresnelTerm::mirror(), MaskingForm::height_correlated,
-                                wi, 3240);
+        const auto e = energies(Beckmann(1e-4), FresnelTerm::mirror(),
+                                MaskingForm::height_correlated, wi, 3240);
         const int specular = sensor.lookup({-wi.x, -wi.y, wi.z});
         double total = 0;
         for (double v : e) total += v;
@@ -97,11 +97,14 @@ TEST_CASE("Model L1 albedo stays in [0, 1] over roughness and incidence") {
     for (double alpha : {0.01, 0.1, 0.5, 1.0, 2.0}) {
         for (int family = 0; family < 2; ++family) {
             std::unique_ptr<Ndf> ndf;
-            if (family == 0) ndf = std::make_unique<Beckmann>(alpha);
-            else ndf = std::make_unique<Ggx>(alpha);
+            if (family == 0)
+                ndf = std::make_unique<Beckmann>(alpha);
+            else
+                ndf = std::make_unique<Ggx>(alpha);
             for (double theta : {0.0, 45.0, 80.0, 89.0, 89.9}) {
                 const Vec3 wi = spherical_direction(radians(theta), 0.0);
-                for (MaskingForm form : {MaskingForm::height_correlated, MaskingForm::uncorrelated}) {
+                for (MaskingForm form :
+                     {MaskingForm::height_correlated, MaskingForm::uncorrelated}) {
                     const auto e = energies(*ndf, mirror, form, wi, 145);
                     const double a = albedo_from_cells(e, 1)[0];
                     CAPTURE(ndf->describe());
@@ -125,8 +128,10 @@ TEST_CASE("Model L1 is reciprocal: f(i, o) = f(o, i)") {
         for (MaskingForm form : {MaskingForm::height_correlated, MaskingForm::uncorrelated}) {
             const MicrofacetModel model(*ndf, gold, form);
             for (int k = 0; k < 1000; ++k) {
-                const Vec3 i = spherical_direction(std::acos(rng.uniform()), kTwoPi * rng.uniform());
-                const Vec3 o = spherical_direction(std::acos(rng.uniform()), kTwoPi * rng.uniform());
+                const Vec3 i =
+                    spherical_direction(std::acos(rng.uniform()), kTwoPi * rng.uniform());
+                const Vec3 o =
+                    spherical_direction(std::acos(rng.uniform()), kTwoPi * rng.uniform());
                 double a[2], b[2];
                 model.eval(i, o, a);
                 model.eval(o, i, b);

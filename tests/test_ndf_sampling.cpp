@@ -1,12 +1,11 @@
-#include <doctest/doctest.h>
-
-#include <memory>
-#include <string>
-#include <vector>
-
 #include "chi_square_harness.h"
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/ggx.h"
+
+#include <doctest/doctest.h>
+#include <memory>
+#include <string>
+#include <vector>
 
 using namespace gonio;
 
@@ -64,8 +63,8 @@ TEST_CASE("sampling visible normals passes a chi-square test") {
 TEST_CASE("the chi-square harness rejects a wrong sampler") {
     // Power check: sampling Beckmann 0.5 against the pdf of Beckmann 0.55 must fail clearly.
     const Beckmann a(0.5), b(0.55);
-    const auto r = test::chi_square_directions(
-        [&](double u1, double u2) { return a.sample_m(u1, u2); },
-        [&](const Vec3& m) { return b.pdf_m(m); }, kSamples, kCells, 7);
+    const auto r =
+        test::chi_square_directions([&](double u1, double u2) { return a.sample_m(u1, u2); },
+                                    [&](const Vec3& m) { return b.pdf_m(m); }, kSamples, kCells, 7);
     CHECK(r.chi.p_value < 1e-6);
 }

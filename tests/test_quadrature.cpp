@@ -1,10 +1,9 @@
-#include <doctest/doctest.h>
-
-#include <cmath>
-
 #include "core/chi_square.h"
 #include "core/math.h"
 #include "core/quadrature.h"
+
+#include <cmath>
+#include <doctest/doctest.h>
 
 using namespace gonio;
 

@@ -1,19 +1,18 @@
 // End-to-end: the gonio binary, its exit codes and messages, and the HDF5 result file.
-#include <doctest/doctest.h>
-#include <hdf5.h>
-#include <hdf5_hl.h>
-#include <sys/wait.h>
-
-#include <unistd.h>
-
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <string>
-
 #include "gonio/io/hdf5_handles.h"
 #include "gonio/io/result_reader.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <doctest/doctest.h>
+#include <filesystem>
+#include <fstream>
+#include <hdf5.h>
+#include <hdf5_hl.h>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 using namespace gonio;
@@ -44,13 +43,16 @@ Run run_gonio(const fs::path& dir, const std::string& args) {
 }
 
 fs::path fresh_dir(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() / ("gonio_test_" + name + "_" + std::to_string(::getpid()));
+    const fs::path d =
+        fs::temp_directory_path() / ("gonio_test_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(d);
     fs::create_directories(d);
     return d;
 }
 
-void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+void write(const fs::path& p, const std::string& text) {
+    std::ofstream(p) << text;
+}
 
 int files_in(const fs::path& d) {
     int n = 0;
@@ -94,9 +96,10 @@ TEST_CASE("gonio model writes a complete result file that gonio info reads") {
     CHECK(s.cases[1].channels == 3);
     CHECK(s.cases[1].wavelength_nm == std::vector<double>{650, 550, 450});
     const std::vector<double>& albedo = s.cases[0].albedos.at("model_l1_albedo");
-    REQUIRE(albedo.size() == 4); // 2 theta_i x 2 phi_i x 1 channel
+    REQUIRE(albedo.size() == 4);                // 2 theta_i x 2 phi_i x 1 channel
     CHECK(std::abs(albedo[0] - 0.9430) < 1e-3); // Beckmann 0.5, normal incidence (DESIGN section 9)
-    CHECK(albedo[0] == doctest::Approx(albedo[1]).epsilon(1e-12)); // isotropic: phi_i does not matter
+    CHECK(albedo[0] ==
+          doctest::Approx(albedo[1]).epsilon(1e-12)); // isotropic: phi_i does not matter
 
     const Run info = run_gonio(d, "info out.h5 --json");
     CHECK(info.code == 0);
@@ -113,7 +116,8 @@ TEST_CASE("result file: cell coordinates are attached dimension scales with unit
     write(d / "small.toml", kSmall);
     REQUIRE(run_gonio(d, "model small.toml -o out.h5 -q").code == 0);
     h5::silence_errors();
-    h5::Handle file(H5Fopen((d / "out.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open");
+    h5::Handle file(H5Fopen((d / "out.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
+                    "open");
     h5::Handle group(H5Gopen2(file, "gold", H5P_DEFAULT), H5Gclose, "group");
     h5::Handle brdf(H5Dopen2(group, "model_l1", H5P_DEFAULT), H5Dclose, "model_l1");
     CHECK(H5DSget_num_scales(brdf, 0) == 1);
@@ -145,21 +149,25 @@ TEST_CASE("a bad config: one line naming file, line and key; exit code 2; no out
     write(d / "bad.toml", "[ndf]\ntype = \"beckmann\"\nalhpa = 0.5\n[beam]\ntheta_i = 0\n");
     const Run r = run_gonio(d, "model bad.toml -o out.h5");
     CHECK(r.code == 2);
-    CHECK(r.err == "gonio: error: bad.toml:3: key 'ndf.alhpa': unknown key (did you mean 'alpha'?); "
-                   "allowed here: type, alpha, alpha_x, alpha_y\n");
+    CHECK(r.err ==
+          "gonio: error: bad.toml:3: key 'ndf.alhpa': unknown key (did you mean 'alpha'?); "
+          "allowed here: type, alpha, alpha_x, alpha_y\n");
     CHECK(files_in(d) == 1); // only bad.toml
 
     write(d / "range.toml", "[ndf]\ntype = \"ggx\"\nalpha = -1\n[beam]\ntheta_i = 0\n");
     const Run range = run_gonio(d, "model range.toml -o out.h5");
     CHECK(range.code == 2);
-    CHECK(range.err.find("range.toml:3: key 'ndf.alpha': value -1 is out of range; allowed [1e-06, 100]") !=
+    CHECK(range.err.find(
+              "range.toml:3: key 'ndf.alpha': value -1 is out of range; allowed [1e-06, 100]") !=
           std::string::npos);
     const Run missing = run_gonio(d, "model nothere.toml -o out.h5");
     CHECK(missing.code == 2);
     CHECK(missing.err.find("nothere.toml: cannot open the config file") != std::string::npos);
-    const Run set = run_gonio(d, "model range.toml --set ndf.alpha=0.3 --set beam.theta_i=95 -o out.h5");
+    const Run set =
+        run_gonio(d, "model range.toml --set ndf.alpha=0.3 --set beam.theta_i=95 -o out.h5");
     CHECK(set.code == 2);
-    CHECK(set.err.find("key 'beam.theta_i': value 95 is out of range; allowed [0, 90)") != std::string::npos);
+    CHECK(set.err.find("key 'beam.theta_i': value 95 is out of range; allowed [0, 90)") !=
+          std::string::npos);
     CHECK(files_in(d) == 2); // bad.toml, range.toml
     fs::remove_all(d);
 }
@@ -190,16 +198,56 @@ TEST_CASE("results do not depend on the thread count") {
     for (const char* c : {"mirror", "gold"}) {
         std::vector<double> a, b;
         {
-            h5::Handle f(H5Fopen((d / "one.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open");
+            h5::Handle f(H5Fopen((d / "one.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+                         H5Fclose, "open");
             h5::Handle g(H5Gopen2(f, c, H5P_DEFAULT), H5Gclose, "group");
             a = h5::read_doubles(g, "model_l1");
         }
         {
-            h5::Handle f(H5Fopen((d / "two.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open");
+            h5::Handle f(H5Fopen((d / "two.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+                         H5Fclose, "open");
             h5::Handle g(H5Gopen2(f, c, H5P_DEFAULT), H5Gclose, "group");
             b = h5::read_doubles(g, "model_l1");
         }
         CHECK(a == b);
+    }
+    fs::remove_all(d);
+}
+
+TEST_CASE("every config error path: exit code 2, one line naming file and key, no file written") {
+    const fs::path d = fresh_dir("errors");
+    const std::string ok = "[ndf]\ntype = \"ggx\"\nalpha = 0.3\n[beam]\ntheta_i = 0\n";
+    struct Bad {
+        std::string text, extra_args, expect;
+    };
+    const Bad cases[] = {
+        {"[ndf]\ntype = \"ggx\"\nalpa = 0.3\n[beam]\ntheta_i = 0\n", "",
+         "c.toml:3: key 'ndf.alpa': unknown key"},
+        {"[ndf]\ntype = \"ggx\"\nalpha = \"x\"\n[beam]\ntheta_i = 0\n", "",
+         "c.toml:3: key 'ndf.alpha': must be a number"},
+        {"[ndf]\ntype = \"ggx\"\nalpha = 0\n[beam]\ntheta_i = 0\n", "",
+         "c.toml:3: key 'ndf.alpha': value 0 is out of range; allowed [1e-06, 100]"},
+        {ok, "--set beam.theta_i=-1",
+         "key 'beam.theta_i': value -1 is out of range; allowed [0, 90)"},
+        {ok, "--set beam.phi_i=400",
+         "key 'beam.phi_i': value 400 is out of range; allowed [0, 360]"},
+        {ok, "--set sensor.cells=0",
+         "key 'sensor.cells': value 0 is out of range; allowed [1, 10000000]"},
+        {ok, "--set model.masking=smith", "key 'model.masking': \"smith\" is not allowed"},
+        {ok, "--set material.type=conductor --set material.ior=Xx", "key 'material.ior': "},
+        {ok, "--set material.f0=0.5", "key 'material.f0': is not used by any case"},
+        {"[ndf]\ntype = \"ggx\"\n", "", "c.toml:1: key 'ndf.alpha': missing"},
+        {"[ndf\n", "", "c.toml:1: TOML syntax error"},
+    };
+    for (const Bad& b : cases) {
+        CAPTURE(b.expect);
+        write(d / "c.toml", b.text);
+        const Run r = run_gonio(d, "model c.toml -o out.h5 " + b.extra_args);
+        CHECK(r.code == 2);
+        CHECK(r.err.find(b.expect) != std::string::npos);
+        CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+        CHECK(r.out.empty());
+        CHECK(files_in(d) == 1); // c.toml only
     }
     fs::remove_all(d);
 }

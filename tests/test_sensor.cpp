@@ -1,11 +1,10 @@
-#include <doctest/doctest.h>
-
-#include <cmath>
-#include <vector>
-
 #include "core/chi_square.h"
 #include "core/random.h"
 #include "sensor/beckers_sensor.h"
+
+#include <cmath>
+#include <doctest/doctest.h>
+#include <vector>
 
 using namespace gonio;
 
@@ -26,7 +25,8 @@ TEST_CASE("every Beckers cell subtends 2 pi / N") {
             projected += c.projected_solid_angle;
         }
         CHECK(total == doctest::Approx(kTwoPi).epsilon(1e-12));
-        CHECK(projected == doctest::Approx(kPi).epsilon(1e-12)); // integral of cos over the hemisphere
+        CHECK(projected ==
+              doctest::Approx(kPi).epsilon(1e-12)); // integral of cos over the hemisphere
     }
 }
 
@@ -83,7 +83,7 @@ TEST_CASE("Beckers lookup: edge cases land in valid cells") {
     for (int n : {1, 2, 145, 3240, 10000}) {
         CAPTURE(n);
         const BeckersSensor s(n);
-        CHECK(s.lookup({0, 0, 1}) == 0);                          // theta = 0
+        CHECK(s.lookup({0, 0, 1}) == 0); // theta = 0
         for (double phi : {0.0, kPi / 3, kPi, kTwoPi, std::nextafter(kTwoPi, 0.0)}) {
             const int horizon = s.lookup({std::cos(phi), std::sin(phi), 0.0}); // theta = 90 deg
             CHECK(horizon >= 0);
@@ -93,7 +93,8 @@ TEST_CASE("Beckers lookup: edge cases land in valid cells") {
         // phi = 0 and phi = 2 pi (after round-off, y = -0 or a tiny negative) are the same cell.
         const double r = std::sin(1.0), z = std::cos(1.0);
         CHECK(s.lookup({r, 0.0, z}) == s.lookup({r, -0.0, z}));
-        CHECK(s.lookup({r, -1e-300, z}) == s.lookup({r, 0.0, z}) + s.ring_cell_count(s.cell(s.lookup({r, 0.0, z})).ring) - 1);
+        CHECK(s.lookup({r, -1e-300, z}) ==
+              s.lookup({r, 0.0, z}) + s.ring_cell_count(s.cell(s.lookup({r, 0.0, z})).ring) - 1);
         // Exactly on a ring boundary cos(theta) = 1 - S/N: the cell just outside the cap.
         for (int ring = 1; ring < s.ring_count(); ++ring) {
             const double zb = 1.0 - static_cast<double>(s.ring_first_cell(ring)) / n;

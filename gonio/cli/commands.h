@@ -7,11 +7,11 @@ namespace gonio {
 
 struct ModelOptions {
     std::string config;
-    std::string output;                // default: <config stem>.h5 in the working directory
+    std::string output; // default: <config stem>.h5 in the working directory
     std::vector<std::string> overrides;
     bool overwrite = false;
     bool quiet = false;
-    int threads = 0;                   // 0: all cores
+    int threads = 0; // 0: all cores
     std::string command_line;
 };
 // `gonio model`: Model L1 of every case and incidence, written to HDF5.

@@ -1,9 +1,9 @@
-#include <cstdio>
-#include <string>
-
 #include "gonio/cli/commands.h"
 #include "gonio/io/json.h"
 #include "gonio/io/result_reader.h"
+
+#include <cstdio>
+#include <string>
 
 namespace gonio {
 
@@ -17,8 +17,8 @@ std::string attribute(const std::map<std::string, std::string>& a, const std::st
 void print_json(const ResultSummary& s) {
     std::string out = "{\n";
     out += "  \"file\": " + json::quote(s.path) + ",\n";
-    for (const char* k : {"file_format", "gonio_version", "git_hash", "command_line",
-                          "config_path", "created_utc"})
+    for (const char* k :
+         {"file_format", "gonio_version", "git_hash", "command_line", "config_path", "created_utc"})
         out += "  " + json::quote(k) + ": " + json::quote(attribute(s.attributes, k)) + ",\n";
     out += "  \"seed\": " + std::to_string(s.seed) + ",\n";
     out += "  \"cases\": [";
@@ -92,8 +92,10 @@ void print_text(const ResultSummary& s) {
 
 int run_info_command(const std::string& path, bool as_json) {
     const ResultSummary s = read_result_summary(path);
-    if (as_json) print_json(s);
-    else print_text(s);
+    if (as_json)
+        print_json(s);
+    else
+        print_text(s);
     return 0;
 }
 

@@ -1,15 +1,14 @@
-#include <tbb/global_control.h>
-
-#include <chrono>
-#include <cstdio>
-#include <filesystem>
-#include <memory>
-
 #include "gonio/cli/commands.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
 #include "gonio/io/result_writer.h"
 #include "gonio/model/cell_integrator.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <tbb/global_control.h>
 
 namespace gonio {
 
@@ -22,8 +21,8 @@ std::string default_output(const std::string& config) {
 
 int run_model_command(const ModelOptions& options) {
     const Config cfg = load_config(options.config, options.overrides); // throws ConfigError
-    const std::string output = options.output.empty() ? default_output(options.config)
-                                                       : options.output;
+    const std::string output =
+        options.output.empty() ? default_output(options.config) : options.output;
     std::unique_ptr<tbb::global_control> threads;
     if (options.threads > 0)
         threads = std::make_unique<tbb::global_control>(
@@ -49,7 +48,8 @@ int run_model_command(const ModelOptions& options) {
                 progress.update(done, c.name + " theta_i=" + std::to_string(theta));
                 const auto t0 = std::chrono::steady_clock::now();
                 const Vec3 wi = spherical_direction(radians(theta), radians(phi));
-                const std::vector<double> energy = model_cell_energy(model, wi, sensor, c.quadrature);
+                const std::vector<double> energy =
+                    model_cell_energy(model, wi, sensor, c.quadrature);
                 const std::vector<double> albedo = albedo_from_cells(energy, nc);
                 result.seconds.push_back(
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());

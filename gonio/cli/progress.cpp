@@ -1,8 +1,7 @@
 #include "gonio/cli/progress.h"
 
-#include <unistd.h>
-
 #include <cstdio>
+#include <unistd.h>
 
 namespace gonio {
 
@@ -10,7 +9,9 @@ Progress::Progress(long long total, bool quiet)
     : total_(total), enabled_(!quiet && ::isatty(STDERR_FILENO)),
       start_(std::chrono::steady_clock::now()), last_(start_ - std::chrono::seconds(1)) {}
 
-Progress::~Progress() { finish(); }
+Progress::~Progress() {
+    finish();
+}
 
 void Progress::update(long long done, const std::string& label) {
     if (!enabled_) return;

@@ -1,17 +1,16 @@
 #include "gonio/config/config.h"
 
-#include <toml++/toml.h>
+#include "gonio/config/config_error.h"
+#include "gonio/config/overrides.h"
+#include "gonio/config/table_reader.h"
+#include "gonio/material/ior_table.h"
 
 #include <algorithm>
 #include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
-
-#include "gonio/config/config_error.h"
-#include "gonio/config/overrides.h"
-#include "gonio/config/table_reader.h"
-#include "gonio/material/ior_table.h"
+#include <toml++/toml.h>
 
 namespace gonio {
 
@@ -31,7 +30,8 @@ const std::map<std::string, std::vector<std::string>>& schema() {
     };
     return s;
 }
-const std::vector<std::string> kSections = {"ndf", "material", "spectrum", "beam", "sensor", "model"};
+const std::vector<std::string> kSections = {"ndf",  "material", "spectrum",
+                                            "beam", "sensor",   "model"};
 
 const Range kAlpha{1e-6, 100};
 const Range kThetaI{0, 90, false, true};
@@ -73,7 +73,9 @@ class Loader {
     }
 
   private:
-    static int line(const toml::node* n) { return n ? static_cast<int>(n->source().begin.line) : 0; }
+    static int line(const toml::node* n) {
+        return n ? static_cast<int>(n->source().begin.line) : 0;
+    }
 
     std::string join(const std::string& a, const std::string& b) const {
         return a.empty() ? b : a + "." + b;
@@ -84,16 +86,17 @@ class Loader {
         const auto& allowed = schema().at(kind);
         for (const auto& [k, v] : t) {
             const std::string key(k.str());
-            if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) unknown(key, v, allowed, path);
+            if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
+                unknown(key, v, allowed, path);
             if (std::find(kSections.begin(), kSections.end(), key) != kSections.end()) {
                 const toml::table* sec = v.as_table();
-                if (!sec)
-                    throw ConfigError(file_, line(&v), join(path, key), "must be a table");
+                if (!sec) throw ConfigError(file_, line(&v), join(path, key), "must be a table");
                 usage_.mark(&v);
                 const auto& sec_allowed = schema().at(key);
                 for (const auto& [sk, sv] : *sec) {
                     const std::string skey(sk.str());
-                    if (std::find(sec_allowed.begin(), sec_allowed.end(), skey) == sec_allowed.end())
+                    if (std::find(sec_allowed.begin(), sec_allowed.end(), skey) ==
+                        sec_allowed.end())
                         unknown(skey, sv, sec_allowed, join(path, key));
                 }
             }
@@ -106,7 +109,8 @@ class Loader {
         for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
         const std::string guess = closest_name(key, allowed.data(), allowed.size());
         throw ConfigError(file_, line(&v), join(path, key),
-                          "unknown key" + (guess.empty() ? "" : " (did you mean '" + guess + "'?)") +
+                          "unknown key" +
+                              (guess.empty() ? "" : " (did you mean '" + guess + "'?)") +
                               "; allowed here: " + list);
     }
 
@@ -163,8 +167,8 @@ class Loader {
         TableReader model = reader(t, path, "model");
         const std::string masking =
             model.string("masking", {"height-correlated", "uncorrelated"}, "height-correlated");
-        c.masking = masking == "uncorrelated" ? MaskingForm::uncorrelated
-                                              : MaskingForm::height_correlated;
+        c.masking =
+            masking == "uncorrelated" ? MaskingForm::uncorrelated : MaskingForm::height_correlated;
         c.quadrature.points = static_cast<int>(model.integer("quadrature", {1, 64}, 4));
         c.quadrature.rel_tol = model.number("tolerance", {1e-12, 0.1}, 1e-6);
         return c;
@@ -202,7 +206,8 @@ class Loader {
     }
 
     void load_material(CaseConfig& c, TableReader r, TableReader spectrum) {
-        c.material_type = r.string("type", {"mirror", "dielectric", "conductor", "schlick"}, "mirror");
+        c.material_type =
+            r.string("type", {"mirror", "dielectric", "conductor", "schlick"}, "mirror");
         // Wavelengths matter only to a spectral material; read them lazily so that an unused
         // [spectrum] is reported.
         auto wavelengths = [&]() {
@@ -270,8 +275,9 @@ class Loader {
             const toml::node* node = nullptr;
             if (const toml::array* arr = root_["case"].as_array())
                 node = (*arr)[k].as_table()->get("name");
-            if (n.empty() || n.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                 "0123456789_.-+") != std::string::npos)
+            if (n.empty() ||
+                n.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                    "0123456789_.-+") != std::string::npos)
                 throw ConfigError(file_, line(node), key,
                                   "\"" + n + "\" is not allowed; use letters, digits and _ . - +");
             if (!seen.insert(n).second)

@@ -2,25 +2,25 @@
 // A gonio run as described by a TOML file: the cases, each with its NDF, material, spectral
 // channels, incidence sweep, sensor and model settings. load_config validates everything before
 // any work starts; the README's "Configuration" section is the manual of every key.
-#include <cstdint>
-#include <string>
-#include <vector>
-
 #include "gonio/material/fresnel_term.h"
 #include "gonio/model/cell_integrator.h"
 #include "heightfield/ndf/make_ndf.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
 
 namespace gonio {
 
 struct CaseConfig {
     std::string name;
     NdfSpec ndf;
-    std::string material_type;        // "mirror" | "dielectric" | "conductor" | "schlick"
-    std::string material_source;      // where the optical constants came from (table path), or ""
+    std::string material_type;   // "mirror" | "dielectric" | "conductor" | "schlick"
+    std::string material_source; // where the optical constants came from (table path), or ""
     FresnelTerm fresnel;
     std::vector<double> wavelengths_nm; // one per channel; empty when the material is achromatic
-    std::vector<double> theta_i_deg;  // incidence sweep, each in [0, 90)
-    std::vector<double> phi_i_deg;    // each in [0, 360]
+    std::vector<double> theta_i_deg;    // incidence sweep, each in [0, 90)
+    std::vector<double> phi_i_deg;      // each in [0, 360]
     int sensor_cells = 3240;
     MaskingForm masking = MaskingForm::height_correlated;
     CellQuadrature quadrature;

@@ -9,8 +9,10 @@ namespace {
 std::string format(const std::string& file, int line, const std::string& key,
                    const std::string& problem) {
     std::string where = file;
-    if (line > 0) where += ":" + std::to_string(line);
-    else if (line == 0) where += " (--set)";
+    if (line > 0)
+        where += ":" + std::to_string(line);
+    else if (line == 0)
+        where += " (--set)";
     if (key.empty()) return where + ": " + problem;
     return where + ": key '" + key + "': " + problem;
 }

@@ -1,9 +1,9 @@
 #include "gonio/config/overrides.h"
 
+#include "gonio/config/config_error.h"
+
 #include <sstream>
 #include <vector>
-
-#include "gonio/config/config_error.h"
 
 namespace gonio {
 

@@ -3,9 +3,8 @@
 // The path's segments are table keys; inside the array of cases a segment is a case's index
 // (from 0) or its name: "case.1.ndf.alpha=0.3", "case.ggx.beam.theta_i=[0, 60]". The value is
 // TOML ("0.3", "[0, 60]", "\"ggx\"") or, if it does not parse as TOML, a bare string ("ggx").
-#include <toml++/toml.h>
-
 #include <string>
+#include <toml++/toml.h>
 
 namespace gonio {
 

@@ -1,9 +1,9 @@
 #include "gonio/config/table_reader.h"
 
+#include "gonio/config/config_error.h"
+
 #include <cmath>
 #include <sstream>
-
-#include "gonio/config/config_error.h"
 
 namespace gonio {
 
@@ -16,13 +16,20 @@ std::string number_text(double v) {
 }
 std::string type_name(const toml::node& n) {
     switch (n.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a number";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::table: return "a table";
-    default: return "a date or time";
+    case toml::node_type::string:
+        return "a string";
+    case toml::node_type::integer:
+        return "an integer";
+    case toml::node_type::floating_point:
+        return "a number";
+    case toml::node_type::boolean:
+        return "a boolean";
+    case toml::node_type::array:
+        return "an array";
+    case toml::node_type::table:
+        return "a table";
+    default:
+        return "a date or time";
     }
 }
 } // namespace
@@ -53,7 +60,9 @@ TableReader::Found TableReader::find(const std::string& key) const {
     return {};
 }
 
-bool TableReader::has(const std::string& key) const { return find(key).node != nullptr; }
+bool TableReader::has(const std::string& key) const {
+    return find(key).node != nullptr;
+}
 bool TableReader::has_own(const std::string& key) const {
     return section_ && section_->get(key) != nullptr;
 }
@@ -67,8 +76,8 @@ bool TableReader::is_string(const std::string& key) const {
 
 std::string TableReader::key_path(const std::string& key) const {
     const Found f = find(key);
-    const std::string& prefix = (f.node && !f.in_section) || !section_ ? defaults_path_
-                                                                       : section_path_;
+    const std::string& prefix =
+        (f.node && !f.in_section) || !section_ ? defaults_path_ : section_path_;
     return prefix.empty() ? key : prefix + "." + key;
 }
 
@@ -120,7 +129,8 @@ std::string TableReader::string(const std::string& key, const std::vector<std::s
         list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
     }
     const std::string guess = closest_name(v, allowed.data(), allowed.size());
-    fail(key, "\"" + v + "\" is not allowed" + (guess.empty() ? "" : " (did you mean \"" + guess + "\"?)") +
+    fail(key, "\"" + v + "\" is not allowed" +
+                  (guess.empty() ? "" : " (did you mean \"" + guess + "\"?)") +
                   "; allowed: " + list);
 }
 
@@ -167,7 +177,8 @@ std::vector<double> TableReader::number_list(const std::string& key, const Range
         } else {
             const double step = sub.number("step", {0, 1e9, true, false});
             if (stop < start) fail(key, "a range table needs stop >= start");
-            const long long count = static_cast<long long>(std::floor((stop - start) / step + 1e-9)) + 1;
+            const long long count =
+                static_cast<long long>(std::floor((stop - start) / step + 1e-9)) + 1;
             if (count > 1000000) fail(key, "a range table may expand to at most 1000000 values");
             for (long long k = 0; k < count; ++k) out.push_back(start + step * k);
         }

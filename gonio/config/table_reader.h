@@ -4,11 +4,10 @@
 // A case's section (e.g. [[case]] ... ndf = {...}) is read first and the file's top-level section
 // of the same name supplies defaults. Every key read is marked as used; UsageTracker then reports
 // any key no case used, so a misspelled or misplaced key never passes silently.
-#include <toml++/toml.h>
-
 #include <optional>
 #include <set>
 #include <string>
+#include <toml++/toml.h>
 #include <vector>
 
 namespace gonio {

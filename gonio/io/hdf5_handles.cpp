@@ -1,7 +1,6 @@
 #include "gonio/io/hdf5_handles.h"
 
 #include <hdf5_hl.h>
-
 #include <stdexcept>
 
 namespace gonio::h5 {
@@ -25,7 +24,9 @@ void Handle::reset() {
     id_ = -1;
 }
 
-void silence_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+void silence_errors() {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+}
 
 void check(herr_t status, const char* what) {
     if (status < 0) throw std::runtime_error(std::string("HDF5: ") + what + " failed");
@@ -95,7 +96,8 @@ Handle write_scale(hid_t group, const std::string& name, const std::vector<doubl
         std::vector<int> iv(values.begin(), values.end());
         check(H5Dwrite(ds, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, iv.data()), "write");
     } else {
-        check(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), "write");
+        check(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+              "write");
     }
     check(H5DSset_scale(ds, name.c_str()), "H5DSset_scale");
     if (!units.empty()) write_string_attribute(ds, "units", units);
@@ -112,17 +114,16 @@ Handle write_dataset(hid_t group, const std::string& name, const std::vector<hsi
     check(H5Pset_chunk(plist, static_cast<int>(chunk.size()), chunk.data()), "H5Pset_chunk");
     check(H5Pset_shuffle(plist), "H5Pset_shuffle");
     check(H5Pset_deflate(plist, 4), "H5Pset_deflate");
-    Handle ds(H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, plist,
-                         H5P_DEFAULT),
-              H5Dclose, ("create " + name).c_str());
+    Handle ds(
+        H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, plist, H5P_DEFAULT),
+        H5Dclose, ("create " + name).c_str());
     check(H5Dwrite(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write");
     if (!units.empty()) write_string_attribute(ds, "units", units);
     write_string_attribute(ds, "long_name", description);
     return ds;
 }
 
-std::vector<double> read_doubles(hid_t group, const std::string& name,
-                                 std::vector<hsize_t>* dims) {
+std::vector<double> read_doubles(hid_t group, const std::string& name, std::vector<hsize_t>* dims) {
     Handle ds(H5Dopen2(group, name.c_str(), H5P_DEFAULT), H5Dclose, ("open " + name).c_str());
     Handle space(H5Dget_space(ds), H5Sclose, "dataspace");
     const int rank = H5Sget_simple_extent_ndims(space);
@@ -131,8 +132,9 @@ std::vector<double> read_doubles(hid_t group, const std::string& name,
     hsize_t total = 1;
     for (hsize_t x : d) total *= x;
     std::vector<double> out(total);
-    if (total) check(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
-                     ("read " + name).c_str());
+    if (total)
+        check(H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()),
+              ("read " + name).c_str());
     if (dims) *dims = d;
     return out;
 }

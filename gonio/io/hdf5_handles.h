@@ -2,7 +2,6 @@
 // RAII ownership of HDF5 identifiers and small helpers around the HDF5 C API and its
 // dimension-scale (H5DS, hdf5_hl) interface. Every failing call throws std::runtime_error.
 #include <hdf5.h>
-
 #include <string>
 #include <vector>
 

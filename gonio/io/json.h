@@ -6,8 +6,8 @@
 
 namespace gonio::json {
 
-std::string quote(const std::string& s);     // a JSON string literal, escaped
-std::string number(double v);                // shortest round-trip form; null for NaN/Inf
+std::string quote(const std::string& s); // a JSON string literal, escaped
+std::string number(double v);            // shortest round-trip form; null for NaN/Inf
 std::string array(const std::vector<double>& v);
 
 } // namespace gonio::json

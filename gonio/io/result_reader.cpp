@@ -1,9 +1,9 @@
 #include "gonio/io/result_reader.h"
 
+#include "gonio/io/hdf5_handles.h"
+
 #include <filesystem>
 #include <stdexcept>
-
-#include "gonio/io/hdf5_handles.h"
 
 namespace gonio {
 
@@ -25,8 +25,8 @@ std::vector<std::string> children(hid_t group, H5O_type_t type) {
                                H5P_DEFAULT);
         } else {
             name.resize(len);
-            H5Lget_name_by_idx(group, ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, k, name.data(),
-                               len + 1, H5P_DEFAULT);
+            H5Lget_name_by_idx(group, ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, k, name.data(), len + 1,
+                               H5P_DEFAULT);
         }
         H5O_info_t oinfo;
         if (H5Oget_info_by_name2(group, name.c_str(), &oinfo, H5O_INFO_BASIC, H5P_DEFAULT) >= 0 &&
@@ -41,9 +41,9 @@ std::map<std::string, std::string> string_attributes(hid_t object) {
     H5O_info_t info;
     h5::check(H5Oget_info2(object, &info, H5O_INFO_NUM_ATTRS), "H5Oget_info");
     for (hsize_t k = 0; k < info.num_attrs; ++k) {
-        h5::Handle attr(H5Aopen_by_idx(object, ".", H5_INDEX_NAME, H5_ITER_INC, k, H5P_DEFAULT,
-                                       H5P_DEFAULT),
-                        H5Aclose, "open attribute");
+        h5::Handle attr(
+            H5Aopen_by_idx(object, ".", H5_INDEX_NAME, H5_ITER_INC, k, H5P_DEFAULT, H5P_DEFAULT),
+            H5Aclose, "open attribute");
         const ssize_t len = H5Aget_name(attr, 0, nullptr);
         std::string name(len, '\0');
         H5Aget_name(attr, len + 1, name.data());

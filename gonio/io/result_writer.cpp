@@ -1,14 +1,13 @@
 #include "gonio/io/result_writer.h"
 
-#include <hdf5_hl.h>
-#include <unistd.h>
+#include "gonio_version.h"
 
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <hdf5_hl.h>
 #include <stdexcept>
-
-#include "gonio_version.h"
+#include <unistd.h>
 
 namespace gonio {
 
@@ -29,8 +28,10 @@ std::string ResultWriter::conventions() {
     return "macro-surface normal n = +z; directions point away from the surface (i towards the "
            "light, o towards the sensor); theta from +z, phi from +x counter-clockwise; angles in "
            "files are in degrees; alpha is the Beckmann/GGX roughness (Beckmann slope standard "
-           "deviation per axis = alpha/sqrt(2)); D is normalised so that integral D(m) (m.n) dw = 1; "
-           "brdf datasets hold cell averages f_c = E_c / projected_solid_angle_c in 1/sr, where E_c "
+           "deviation per axis = alpha/sqrt(2)); D is normalised so that integral D(m) (m.n) dw = "
+           "1; "
+           "brdf datasets hold cell averages f_c = E_c / projected_solid_angle_c in 1/sr, where "
+           "E_c "
            "is the fraction of the incident power that leaves into cell c";
 }
 
@@ -117,22 +118,30 @@ void ResultWriter::write_model_case(const CaseConfig& c, const BeckersSensor& se
         if (deg) v = to_degrees(v);
         cell_coords.emplace_back(h5::write_scale(group, name, v, units, what), name);
     };
-    coord("theta_center", [](const SensorCell& s) { return s.theta_center; }, "degree",
-          "polar angle of the cell's equal-area centre", true);
-    coord("phi_center", [](const SensorCell& s) { return s.phi_center; }, "degree",
-          "azimuth of the cell's centre", true);
-    coord("theta_min", [](const SensorCell& s) { return s.theta_min; }, "degree",
-          "lower polar bound of the cell", true);
-    coord("theta_max", [](const SensorCell& s) { return s.theta_max; }, "degree",
-          "upper polar bound of the cell", true);
-    coord("phi_min", [](const SensorCell& s) { return s.phi_min; }, "degree",
-          "lower azimuth bound of the cell", true);
-    coord("phi_max", [](const SensorCell& s) { return s.phi_max; }, "degree",
-          "upper azimuth bound of the cell", true);
-    coord("solid_angle", [](const SensorCell& s) { return s.solid_angle; }, "sr",
-          "solid angle of the cell (2 pi / N)", false);
-    coord("projected_solid_angle", [](const SensorCell& s) { return s.projected_solid_angle; },
-          "sr", "integral of cos(theta) over the cell", false);
+    coord(
+        "theta_center", [](const SensorCell& s) { return s.theta_center; }, "degree",
+        "polar angle of the cell's equal-area centre", true);
+    coord(
+        "phi_center", [](const SensorCell& s) { return s.phi_center; }, "degree",
+        "azimuth of the cell's centre", true);
+    coord(
+        "theta_min", [](const SensorCell& s) { return s.theta_min; }, "degree",
+        "lower polar bound of the cell", true);
+    coord(
+        "theta_max", [](const SensorCell& s) { return s.theta_max; }, "degree",
+        "upper polar bound of the cell", true);
+    coord(
+        "phi_min", [](const SensorCell& s) { return s.phi_min; }, "degree",
+        "lower azimuth bound of the cell", true);
+    coord(
+        "phi_max", [](const SensorCell& s) { return s.phi_max; }, "degree",
+        "upper azimuth bound of the cell", true);
+    coord(
+        "solid_angle", [](const SensorCell& s) { return s.solid_angle; }, "sr",
+        "solid angle of the cell (2 pi / N)", false);
+    coord(
+        "projected_solid_angle", [](const SensorCell& s) { return s.projected_solid_angle; }, "sr",
+        "integral of cos(theta) over the cell", false);
     std::vector<Handle> extra;
     if (!c.wavelengths_nm.empty())
         extra.push_back(h5::write_scale(group, "wavelength", c.wavelengths_nm, "nm",
@@ -144,15 +153,16 @@ void ResultWriter::write_model_case(const CaseConfig& c, const BeckersSensor& se
         brdf[k] = r.energy[k] / sensor.cell(static_cast<int>(cell_index)).projected_solid_angle;
     }
     const std::vector<hsize_t> dims4{nt, np, ncell, nc}, chunk4{1, 1, ncell, nc};
-    Handle f = h5::write_dataset(group, "model_l1", dims4, chunk4, brdf.data(), "1/sr",
-                                 "Model L1: cell average of the specular microfacet BRDF [R19 Eq. 2]");
+    Handle f =
+        h5::write_dataset(group, "model_l1", dims4, chunk4, brdf.data(), "1/sr",
+                          "Model L1: cell average of the specular microfacet BRDF [R19 Eq. 2]");
     Handle e = h5::write_dataset(group, "model_l1_energy", dims4, chunk4, r.energy.data(), "1",
                                  "Model L1: fraction of the incident power leaving into the cell");
-    Handle a = h5::write_dataset(group, "model_l1_albedo", {nt, np, nc}, {1, 1, nc},
-                                 r.albedo.data(), "1",
-                                 "Model L1: directional albedo, integral of f cos(theta_o) dw_o");
-    Handle t = h5::write_dataset(group, "model_l1_seconds", {nt, np}, {1, 1}, r.seconds.data(),
-                                 "s", "wall time of the Model L1 evaluation");
+    Handle a =
+        h5::write_dataset(group, "model_l1_albedo", {nt, np, nc}, {1, 1, nc}, r.albedo.data(), "1",
+                          "Model L1: directional albedo, integral of f cos(theta_o) dw_o");
+    Handle t = h5::write_dataset(group, "model_l1_seconds", {nt, np}, {1, 1}, r.seconds.data(), "s",
+                                 "wall time of the Model L1 evaluation");
     for (hid_t ds : {f.get(), e.get()}) {
         h5::check(H5DSattach_scale(ds, theta_i, 0), "attach theta_i");
         h5::check(H5DSattach_scale(ds, phi_i, 1), "attach phi_i");
@@ -175,7 +185,9 @@ void ResultWriter::commit() {
     file_.reset();
     std::error_code ec;
     std::filesystem::rename(tmp_path_, path_, ec);
-    if (ec) throw std::runtime_error("cannot rename " + tmp_path_ + " to " + path_ + ": " + ec.message());
+    if (ec)
+        throw std::runtime_error("cannot rename " + tmp_path_ + " to " + path_ + ": " +
+                                 ec.message());
     committed_ = true;
 }
 

@@ -3,12 +3,12 @@
 // case; coordinates are HDF5 dimension scales with units; the config, program version, git hash,
 // seed and command line are stored in the root attributes. The file is written under a temporary
 // name and renamed when complete, so a failed run leaves nothing half-written.
-#include <string>
-#include <vector>
-
 #include "gonio/config/config.h"
 #include "gonio/io/hdf5_handles.h"
 #include "sensor/beckers_sensor.h"
+
+#include <string>
+#include <vector>
 
 namespace gonio {
 

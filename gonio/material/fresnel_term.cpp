@@ -1,12 +1,14 @@
 #include "gonio/material/fresnel_term.h"
 
-#include <sstream>
-
 #include "gonio/material/fresnel.h"
+
+#include <sstream>
 
 namespace gonio {
 
-FresnelTerm FresnelTerm::mirror() { return FresnelTerm(); }
+FresnelTerm FresnelTerm::mirror() {
+    return FresnelTerm();
+}
 
 FresnelTerm FresnelTerm::dielectric(std::vector<double> eta) {
     FresnelTerm f;
@@ -34,7 +36,9 @@ FresnelTerm FresnelTerm::schlick(std::vector<double> f0) {
 
 void FresnelTerm::eval(double cos_i, double* out) const {
     switch (kind_) {
-    case Kind::mirror: out[0] = 1.0; return;
+    case Kind::mirror:
+        out[0] = 1.0;
+        return;
     case Kind::dielectric:
         for (int c = 0; c < channels_; ++c) out[c] = fresnel_dielectric(cos_i, real_[c]);
         return;
@@ -51,15 +55,24 @@ std::string FresnelTerm::describe() const {
     std::ostringstream s;
     s.precision(10);
     switch (kind_) {
-    case Kind::mirror: return "mirror(F=1)";
-    case Kind::dielectric: s << "dielectric(eta="; break;
-    case Kind::schlick: s << "schlick(f0="; break;
-    case Kind::conductor: s << "conductor(eta="; break;
+    case Kind::mirror:
+        return "mirror(F=1)";
+    case Kind::dielectric:
+        s << "dielectric(eta=";
+        break;
+    case Kind::schlick:
+        s << "schlick(f0=";
+        break;
+    case Kind::conductor:
+        s << "conductor(eta=";
+        break;
     }
     for (int c = 0; c < channels_; ++c) {
         if (c) s << ", ";
-        if (kind_ == Kind::conductor) s << complex_[c].real() << "+" << complex_[c].imag() << "i";
-        else s << real_[c];
+        if (kind_ == Kind::conductor)
+            s << complex_[c].real() << "+" << complex_[c].imag() << "i";
+        else
+            s << real_[c];
     }
     s << ")";
     return s.str();

@@ -1,11 +1,10 @@
 #include "gonio/model/cell_integrator.h"
 
-#include <tbb/parallel_for.h>
+#include "core/quadrature.h"
 
 #include <algorithm>
 #include <cmath>
-
-#include "core/quadrature.h"
+#include <tbb/parallel_for.h>
 
 namespace gonio {
 
@@ -91,9 +90,10 @@ class CellIntegrator {
     }
 
     // Halves the longer angular side (near the pole, thin azimuthal wedges need no further
-    // azimuthal splits), or the side the lobe needs resolved. A rectangle is accepted when splitting changes its integral by
-    // less than rel_tol of that integral, or by less than an absolute floor proportional to its
-    // solid angle (rel_tol * 1e-4 of the hemisphere's share), so negligible regions stop early.
+    // azimuthal splits), or the side the lobe needs resolved. A rectangle is accepted when
+    // splitting changes its integral by less than rel_tol of that integral, or by less than an
+    // absolute floor proportional to its solid angle (rel_tol * 1e-4 of the hemisphere's share), so
+    // negligible regions stop early.
     void refine(const Rect& r, const double* coarse, int depth, double* out) const {
         double dt, dp;
         extents(r, dt, dp);
@@ -147,7 +147,8 @@ std::vector<double> model_cell_energy(const MicrofacetModel& model, const Vec3& 
     // Cells are independent: the result does not depend on the thread count.
     tbb::parallel_for(0, sensor.cell_count(), [&](int c) {
         const SensorCell& cell = sensor.cell(c);
-        const Rect r{std::cos(cell.theta_max), std::cos(cell.theta_min), cell.phi_min, cell.phi_max};
+        const Rect r{std::cos(cell.theta_max), std::cos(cell.theta_min), cell.phi_min,
+                     cell.phi_max};
         integrator.integrate(r, &energy[static_cast<size_t>(c) * nc]);
     });
     return energy;

@@ -6,19 +6,20 @@
 //
 // Each cell is a rectangle in (cos theta, phi), where dw = d(cos theta) dphi. It is integrated by
 // tensor Gauss-Legendre rules, split in two along its longer side while the split changes the
-// result by more than the tolerance, and always split while it is wider than the distribution's narrowest feature and
-// near the specular direction, so that no rule can step over a lobe narrower than a cell.
-#include <vector>
-
+// result by more than the tolerance, and always split while it is wider than the distribution's
+// narrowest feature and near the specular direction, so that no rule can step over a lobe narrower
+// than a cell.
 #include "gonio/model/microfacet_model.h"
 #include "sensor/beckers_sensor.h"
+
+#include <vector>
 
 namespace gonio {
 
 struct CellQuadrature {
-    int points = 4;          // Gauss-Legendre points per axis of each rectangle, in [1, 64]
-    double rel_tol = 1e-6;   // relative tolerance on each cell's energy
-    int max_depth = 48;      // largest number of successive halvings of a cell
+    int points = 4;        // Gauss-Legendre points per axis of each rectangle, in [1, 64]
+    double rel_tol = 1e-6; // relative tolerance on each cell's energy
+    int max_depth = 48;    // largest number of successive halvings of a cell
 };
 
 // E[c * channels + k]: energy fraction into cell c for channel k, incidence wi (unit, wi.z > 0).

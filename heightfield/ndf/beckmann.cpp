@@ -1,9 +1,9 @@
 #include "heightfield/ndf/beckmann.h"
 
+#include "core/special_functions.h"
+
 #include <cmath>
 #include <limits>
-
-#include "core/special_functions.h"
 
 namespace gonio {
 
@@ -45,7 +45,10 @@ void Beckmann::sample_visible_slope(double c, double u1, double u2, double& x, d
     if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
     for (int i = 0; i < 300; ++i) {
         const double g = cdf(t) - target;
-        if (g > 0) hi = t; else lo = t;
+        if (g > 0)
+            hi = t;
+        else
+            lo = t;
         const double dg = (mu - t) * std::exp(-t * t);
         double next = dg > 0 ? t - g / dg : 0.5 * (lo + hi);
         if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);

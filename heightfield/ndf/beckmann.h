@@ -1,7 +1,9 @@
 #pragma once
 // Anisotropic Beckmann distribution [M18 Eq. 16; R19 section 2.1]:
-//   D(m) = exp(-tan^2 theta_m (cos^2 phi_m / ax^2 + sin^2 phi_m / ay^2)) / (pi ax ay cos^4 theta_m),
-// with its exact Smith Lambda [M18 Eq. 20]. The slope standard deviation per axis is alpha / sqrt 2.
+//   D(m) = exp(-tan^2 theta_m (cos^2 phi_m / ax^2 + sin^2 phi_m / ay^2)) / (pi ax ay cos^4
+//   theta_m),
+// with its exact Smith Lambda [M18 Eq. 20]. The slope standard deviation per axis is alpha /
+// sqrt 2.
 #include "heightfield/ndf/shape_invariant_ndf.h"
 
 namespace gonio {

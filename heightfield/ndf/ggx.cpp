@@ -8,7 +8,7 @@ namespace gonio {
 
 double Ggx::d_unit(double r2, double cos2) const {
     const double k = cos2 + cos2 * r2; // cos^2 (1 + tan^2): stays finite at the horizon
-    return 1.0 / (kPi * k * k);         // M18 Eq. 21 with alpha = 1
+    return 1.0 / (kPi * k * k);        // M18 Eq. 21 with alpha = 1
 }
 
 double Ggx::lambda_unit(double t2) const {

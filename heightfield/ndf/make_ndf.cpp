@@ -1,9 +1,9 @@
 #include "heightfield/ndf/make_ndf.h"
 
-#include <stdexcept>
-
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/ggx.h"
+
+#include <stdexcept>
 
 namespace gonio {
 

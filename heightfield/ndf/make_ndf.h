@@ -1,9 +1,9 @@
 #pragma once
 // Builds a distribution from its validated description (the config's [ndf] table).
+#include "heightfield/ndf/ndf.h"
+
 #include <memory>
 #include <string>
-
-#include "heightfield/ndf/ndf.h"
 
 namespace gonio {
 

@@ -19,10 +19,12 @@ double Ndf::G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form) co
     const double li = lambda(i), lo = lambda(o);
     if (std::isinf(li) || std::isinf(lo)) return 0.0;
     if (form == MaskingForm::height_correlated) return 1.0 / (1.0 + li + lo); // R19 Eq. 9
-    return 1.0 / ((1.0 + li) * (1.0 + lo));                                  // R19 Eq. 3
+    return 1.0 / ((1.0 + li) * (1.0 + lo));                                   // R19 Eq. 3
 }
 
-double Ndf::pdf_m(const Vec3& m) const { return m.z > 0 ? D(m) * m.z : 0.0; }
+double Ndf::pdf_m(const Vec3& m) const {
+    return m.z > 0 ? D(m) * m.z : 0.0;
+}
 
 double Ndf::pdf_visible(const Vec3& v, const Vec3& m) const {
     if (v.z <= 0) return 0.0;

@@ -4,9 +4,9 @@
 //
 // Conventions (README): n = +z; D is normalised so that  integral D(m) (m.n) dw_m = 1  [R19 Eq. 2
 // text]; Smith's masking G1(v) = 1 / (1 + Lambda(v)) [R19 Eq. 8]; directions are unit vectors.
-#include <string>
-
 #include "core/math.h"
+
+#include <string>
 
 namespace gonio {
 

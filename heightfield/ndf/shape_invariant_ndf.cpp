@@ -54,7 +54,11 @@ std::string ShapeInvariantNdf::describe() const {
     return s.str();
 }
 
-double ShapeInvariantNdf::narrowest_feature() const { return std::min(ax_, ay_); }
-double ShapeInvariantNdf::widest_feature() const { return std::max(ax_, ay_); }
+double ShapeInvariantNdf::narrowest_feature() const {
+    return std::min(ax_, ay_);
+}
+double ShapeInvariantNdf::widest_feature() const {
+    return std::max(ax_, ay_);
+}
 
 } // namespace gonio

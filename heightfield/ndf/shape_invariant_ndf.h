@@ -1,7 +1,7 @@
 #pragma once
 // Shape-invariant anisotropic distributions: D(m) = P22(slope) / cos^4(theta_m) with
-// P22(p, q) = P22_1(p / alpha_x, q / alpha_y) / (alpha_x alpha_y) [R19 Eq. 6, footnote 1], where P22_1
-// is an isotropic slope density of unit roughness. Stretching the slopes turns Lambda and the
+// P22(p, q) = P22_1(p / alpha_x, q / alpha_y) / (alpha_x alpha_y) [R19 Eq. 6, footnote 1], where
+// P22_1 is an isotropic slope density of unit roughness. Stretching the slopes turns Lambda and the
 // visible-normal sampling of any alpha into those of alpha = 1 (Heitz 2014 section 5.3;
 // Heitz & d'Eon 2014, "Importance sampling microfacet-based BSDFs using the distribution of
 // visible normals", section 4).
