@@ -45,7 +45,10 @@ int run_model_command(const ModelOptions& options) {
         ModelL1Result result;
         for (double theta : c.theta_i_deg) {
             for (double phi : c.phi_i_deg) {
-                progress.update(done, c.name + " theta_i=" + std::to_string(theta));
+                char label[160];
+                std::snprintf(label, sizeof label, "%s theta_i=%g phi_i=%g", c.name.c_str(), theta,
+                              phi);
+                progress.update(done, label);
                 const auto t0 = std::chrono::steady_clock::now();
                 const Vec3 wi = spherical_direction(radians(theta), radians(phi));
                 const std::vector<double> energy =
