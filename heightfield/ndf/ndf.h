@@ -35,6 +35,12 @@ class Ndf {
     // standard deviation): the analytic models refine their quadrature down to this scale.
     virtual double narrowest_feature() const = 0;
     virtual double widest_feature() const = 0;
+    // For shape-invariant distributions: true, with the roughness (alpha_x, alpha_y) that maps the
+    // slopes to an isotropic unit-roughness distribution (p / alpha_x, q / alpha_y).
+    virtual bool slope_stretch(double& alpha_x, double& alpha_y) const {
+        (void)alpha_x, (void)alpha_y;
+        return false;
+    }
 
     // G1(v) = 1 / (1 + Lambda(v)) [R19 Eq. 8].
     double G1(const Vec3& v) const;

@@ -24,6 +24,10 @@ class ShapeInvariantNdf : public Ndf {
     std::string describe() const final;
     double narrowest_feature() const final;
     double widest_feature() const final;
+    bool slope_stretch(double& alpha_x, double& alpha_y) const final {
+        alpha_x = ax_, alpha_y = ay_;
+        return true;
+    }
 
   protected:
     // Unit-roughness isotropic model, in terms of the squared stretched slope

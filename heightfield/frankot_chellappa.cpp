@@ -1,0 +1,117 @@
+#include "heightfield/frankot_chellappa.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+
+#include "core/math.h"
+
+namespace gonio {
+
+void init_fftw_threads() {
+    static std::once_flag once;
+    std::call_once(once, [] { fftwf_init_threads(); });
+}
+
+FrankotChellappa::FrankotChellappa(int n, int threads) : n_(n) {
+    if (n < 2) throw std::invalid_argument("FrankotChellappa: size must be >= 2");
+    init_fftw_threads();
+    const size_t real_count = size_t(n) * n, spec_count = size_t(n) * (n / 2 + 1);
+    real_ = fftwf_alloc_real(real_count);
+    real_q_ = fftwf_alloc_real(real_count);
+    heights_ = fftwf_alloc_real(real_count);
+    spec_p_ = fftwf_alloc_complex(spec_count);
+    spec_q_ = fftwf_alloc_complex(spec_count);
+    if (!real_ || !real_q_ || !heights_ || !spec_p_ || !spec_q_) throw std::bad_alloc();
+    // The planner is not thread-safe; plans are made here, once.
+    static std::mutex planner;
+    std::lock_guard<std::mutex> lock(planner);
+    fftwf_plan_with_nthreads(std::max(1, threads));
+    forward_p_ = fftwf_plan_dft_r2c_2d(n, n, real_, spec_p_, FFTW_ESTIMATE);
+    forward_q_ = fftwf_plan_dft_r2c_2d(n, n, real_q_, spec_q_, FFTW_ESTIMATE);
+    backward_ = fftwf_plan_dft_c2r_2d(n, n, spec_p_, heights_, FFTW_ESTIMATE);
+    if (!forward_p_ || !forward_q_ || !backward_) throw std::runtime_error("FFTW planning failed");
+    // Discrete derivative factors: row index v (y, all n), column index u (x, n/2 + 1).
+    dx_re_.resize(n / 2 + 1), dx_im_.resize(n / 2 + 1), dy_re_.resize(n), dy_im_.resize(n);
+    for (int u = 0; u <= n / 2; ++u) {
+        dx_re_[u] = float(std::cos(kTwoPi * u / n) - 1.0);
+        dx_im_[u] = float(std::sin(kTwoPi * u / n));
+    }
+    for (int v = 0; v < n; ++v) {
+        dy_re_[v] = float(std::cos(kTwoPi * v / n) - 1.0);
+        dy_im_[v] = float(std::sin(kTwoPi * v / n));
+    }
+}
+
+FrankotChellappa::~FrankotChellappa() {
+    if (forward_p_) fftwf_destroy_plan(forward_p_);
+    if (forward_q_) fftwf_destroy_plan(forward_q_);
+    if (backward_) fftwf_destroy_plan(backward_);
+    fftwf_free(real_);
+    fftwf_free(real_q_);
+    fftwf_free(heights_);
+    fftwf_free(spec_p_);
+    fftwf_free(spec_q_);
+}
+
+void FrankotChellappa::integrate(const std::vector<float>& p, const std::vector<float>& q,
+                                 std::vector<float>& h) {
+    const size_t count = size_t(n_) * n_;
+    std::memcpy(real_, p.data(), count * sizeof(float));
+    std::memcpy(real_q_, q.data(), count * sizeof(float));
+    integrate();
+    h.assign(heights_, heights_ + count);
+}
+
+void FrankotChellappa::integrate() {
+    using Clock = std::chrono::steady_clock;
+    auto t = Clock::now();
+    fftwf_execute(forward_p_);
+    fftwf_execute(forward_q_);
+    fft_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
+    const int w = n_ / 2 + 1;
+    const float scale = 1.0f / float(size_t(n_) * n_);
+    tbb::parallel_for(0, n_, [&](int v) {
+        const float br = dy_re_[v], bi = dy_im_[v];
+        fftwf_complex* P = spec_p_ + size_t(v) * w;
+        const fftwf_complex* Q = spec_q_ + size_t(v) * w;
+        for (int u = 0; u < w; ++u) {
+            const float ar = dx_re_[u], ai = dx_im_[u];
+            const float denom = ar * ar + ai * ai + br * br + bi * bi;
+            // (conj(a) P + conj(b) Q) / denom, scaled for the unnormalised inverse transform;
+            // the mean height (u = v = 0) is free: zero.
+            const float re = ar * P[u][0] + ai * P[u][1] + br * Q[u][0] + bi * Q[u][1];
+            const float im = ar * P[u][1] - ai * P[u][0] + br * Q[u][1] - bi * Q[u][0];
+            const float k = denom > 0 ? scale / denom : 0.0f;
+            P[u][0] = re * k;
+            P[u][1] = im * k;
+        }
+    });
+    t = Clock::now();
+    fftwf_execute(backward_); // spec_p_ -> heights_
+    fft_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+void FrankotChellappa::autocorrelation(const std::vector<float>& h, std::vector<float>& out) {
+    const size_t count = size_t(n_) * n_;
+    double mean = 0;
+    for (float v : h) mean += v;
+    mean /= double(count);
+    for (size_t k = 0; k < count; ++k) real_[k] = float(h[k] - mean);
+    fftwf_execute(forward_p_);
+    const size_t spec = size_t(n_) * (n_ / 2 + 1);
+    for (size_t k = 0; k < spec; ++k) {
+        spec_p_[k][0] = spec_p_[k][0] * spec_p_[k][0] + spec_p_[k][1] * spec_p_[k][1];
+        spec_p_[k][1] = 0.0f;
+    }
+    fftwf_execute(backward_);
+    const float zero = heights_[0];
+    out.resize(count);
+    for (size_t k = 0; k < count; ++k) out[k] = zero > 0 ? heights_[k] / zero : 0.0f;
+}
+
+} // namespace gonio

@@ -1,0 +1,396 @@
+#include "heightfield/generate.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <memory>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/random.h"
+#include "heightfield/frankot_chellappa.h"
+#include "heightfield/surface_metrics.h"
+
+namespace gonio {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Forward differences of h (per unit spacing: the generator works in grid units).
+void differentiate(const std::vector<float>& h, int n, std::vector<float>& p, std::vector<float>& q) {
+    p.resize(h.size());
+    q.resize(h.size());
+    tbb::parallel_for(0, n, [&](int y) {
+        const int y1 = (y + 1) % n;
+        for (int x = 0; x < n; ++x) {
+            const int x1 = (x + 1) % n;
+            const float h0 = h[size_t(y) * n + x];
+            p[size_t(y) * n + x] = h[size_t(y) * n + x1] - h0;
+            q[size_t(y) * n + x] = h[size_t(y1) * n + x] - h0;
+        }
+    });
+}
+
+// Mean relative Schwarz error and the fraction of cells above the threshold, logged each
+// iteration. `row_step` > 1 estimates them on every row_step-th row (a monitor, unbiased).
+void log_schwarz(const float* p, const float* q, int n, double threshold, GenerationLog* log,
+                 int row_step = 1) {
+    if (!log) return;
+    // Per-row sums, added in a fixed order: deterministic for any thread count.
+    const int rows = (n + row_step - 1) / row_step;
+    std::vector<double> row_sum(rows), row_above(rows);
+    const float thr = float(threshold);
+    tbb::parallel_for(0, rows, [&](int r) {
+        const int y = r * row_step;
+        const float* p0 = &p[size_t(y) * n];
+        const float* p1 = &p[size_t((y + 1) % n) * n];
+        const float* q0 = &q[size_t(y) * n];
+        float s = 0;
+        int above = 0;
+        for (int x = 0; x < n; ++x) {
+            const float a = p0[x], b = q0[x + 1 < n ? x + 1 : 0], c = p1[x], d = q0[x];
+            const float sum = std::abs(a) + std::abs(b) + std::abs(c) + std::abs(d);
+            const float num = std::abs(a + b - c - d); // R19 Eq. 19
+            s += sum > 0 ? num / sum : 0.0f;
+            above += num > thr * sum;
+        }
+        row_sum[r] = s, row_above[r] = above;
+    });
+    double s = 0, a = 0;
+    for (int r = 0; r < rows; ++r) s += row_sum[r], a += row_above[r];
+    log->schwarz_mean.push_back(s / (double(rows) * n));
+    log->above_threshold.push_back(a / (double(rows) * n));
+}
+
+// A uniform grid over slope space holding the unused pool values (R19 Step 2), with swap-removal.
+class SlopeGrid {
+  public:
+    SlopeGrid(const std::vector<float>& pp, const std::vector<float>& pq, const std::vector<int>& free_ids)
+        : pp_(pp), pq_(pq) {
+        const size_t count = free_ids.size();
+        g_ = std::max(1, int(std::sqrt(double(count) / 4.0)));
+        lo_x_ = lo_y_ = 1e30f, hi_x_ = hi_y_ = -1e30f;
+        for (int id : free_ids) {
+            lo_x_ = std::min(lo_x_, pp[id]), hi_x_ = std::max(hi_x_, pp[id]);
+            lo_y_ = std::min(lo_y_, pq[id]), hi_y_ = std::max(hi_y_, pq[id]);
+        }
+        wx_ = std::max(1e-12f, (hi_x_ - lo_x_) / g_), wy_ = std::max(1e-12f, (hi_y_ - lo_y_) / g_);
+        start_.assign(size_t(g_) * g_ + 1, 0);
+        for (int id : free_ids) ++start_[bin(pp[id], pq[id]) + 1];
+        for (size_t b = 1; b < start_.size(); ++b) start_[b] += start_[b - 1];
+        end_.assign(start_.begin(), start_.end() - 1);
+        ids_.resize(count);
+        for (int id : free_ids) ids_[end_[bin(pp[id], pq[id])]++] = id;
+    }
+
+    // The unused value nearest to (x, y), removed from the grid; -1 if none is left.
+    int take_nearest(float x, float y) {
+        const int cx = cell(x, lo_x_, wx_), cy = cell(y, lo_y_, wy_);
+        int best = -1;
+        size_t best_pos = 0, best_bin = 0;
+        float best_d = 1e30f;
+        int found_ring = -1;
+        for (int r = 0; r < 2 * g_; ++r) {
+            if (found_ring >= 0 && r > found_ring + 1) break; // one more ring may hold a closer one
+            for (int by = cy - r; by <= cy + r; ++by) {
+                if (by < 0 || by >= g_) continue;
+                const bool edge_row = by == cy - r || by == cy + r;
+                for (int bx = cx - r; bx <= cx + r; bx += edge_row ? 1 : 2 * r) {
+                    if (bx >= 0 && bx < g_) {
+                        const size_t b = size_t(by) * g_ + bx;
+                        for (size_t k = start_[b]; k < end_[b]; ++k) {
+                            const int id = ids_[k];
+                            const float dx = pp_[id] - x, dy = pq_[id] - y, d = dx * dx + dy * dy;
+                            if (d < best_d) best_d = d, best = id, best_pos = k, best_bin = b;
+                        }
+                    }
+                    if (r == 0) break;
+                }
+            }
+            if (best >= 0 && found_ring < 0) found_ring = r;
+        }
+        if (best >= 0) std::swap(ids_[best_pos], ids_[--end_[best_bin]]);
+        return best;
+    }
+
+  private:
+    static int cell(float v, float lo, float w) {
+        return std::clamp(int((v - lo) / w), 0, std::numeric_limits<int>::max());
+    }
+    size_t bin(float x, float y) const {
+        return size_t(std::min(cell(y, lo_y_, wy_), g_ - 1)) * g_ + std::min(cell(x, lo_x_, wx_), g_ - 1);
+    }
+    const std::vector<float>& pp_;
+    const std::vector<float>& pq_;
+    int g_;
+    float lo_x_, lo_y_, hi_x_, hi_y_, wx_, wy_;
+    std::vector<size_t> start_, end_;
+    std::vector<int> ids_;
+};
+
+// One iteration of sliced optimal transport towards the target: take one direction e (golden
+// angle sequence) in the stretched slope frame, where the target is isotropic, and move every
+// gradient of the integrated surface along e so that the projections g.e take the target's 1-D
+// marginal, matched by rank (the k-th smallest projection gets the k-th quantile). Over the
+// directions this transports the whole 2-D distribution, radius and angle together. Ranks come
+// from a fine histogram (2^16 bins, linear inside a bin): O(N), in two parallel passes.
+struct SlicedWork {
+    std::vector<std::uint32_t> in_bin;
+    std::vector<std::vector<std::uint32_t>> part;
+    std::vector<float> map;
+    float lo = 0, hi = 0; // histogram range for the next step
+};
+
+// The target's quantile function in the stretched frame: a table of 2^17 + 1 quantiles that stays
+// in cache (linear interpolation), and the whole sorted marginal for the two outermost intervals,
+// where heavy tails (GGX) need every sample.
+class Quantiles {
+  public:
+    explicit Quantiles(std::vector<float> sorted) : all_(std::move(sorted)) {
+        table_.resize(kSize + 1);
+        for (int i = 0; i <= kSize; ++i) table_[i] = at_full(double(i) / kSize);
+    }
+    float operator()(double u) const {
+        const double t = u * kSize;
+        const int i = int(t);
+        if (i < 1 || i >= kSize - 1) return at_full(u);
+        const float f = float(t - i);
+        return table_[i] + f * (table_[i + 1] - table_[i]);
+    }
+
+  private:
+    static constexpr int kSize = 1 << 17;
+    float at_full(double u) const {
+        return all_[std::min(all_.size() - 1, size_t(std::max(0.0, u) * double(all_.size())))];
+    }
+    std::vector<float> all_, table_;
+};
+
+void sliced_step(const float* h, int n, double ax, double ay, double psi,
+                 const Quantiles& quantile, SlicedWork& w, float* p, float* q) {
+    const size_t cells = size_t(n) * n;
+    const float ex = float(std::cos(psi) / ax), ey = float(std::sin(psi) / ay);
+    const int bins = 1 << 15, chunks = 4;
+    w.part.resize(chunks);
+    // Pass 1 (row blocks): gradient of h, its projection, the projections' range, and their
+    // histogram over the previous iteration's range widened by 5 % (known before the pass).
+    float lo = w.lo, hi = w.hi;
+    float inv_width = float(bins) / std::max(hi - lo, 1e-30f);
+    std::vector<float> block_lo(chunks), block_hi(chunks);
+    tbb::parallel_for(0, chunks, [&](int c) {
+        auto& hist = w.part[c];
+        hist.assign(bins, 0);
+        float blo = std::numeric_limits<float>::max(), bhi = -blo;
+        for (int y = n * c / chunks; y < n * (c + 1) / chunks; ++y) {
+            const float* row = &h[size_t(y) * n];
+            const float* next = &h[size_t((y + 1) % n) * n];
+            for (int x = 0; x < n; ++x) {
+                const float h0 = row[x];
+                const float v = (row[x + 1 < n ? x + 1 : 0] - h0) * ex + (next[x] - h0) * ey;
+                blo = std::min(blo, v), bhi = std::max(bhi, v);
+                ++hist[std::clamp(int((v - lo) * inv_width), 0, bins - 1)];
+            }
+        }
+        block_lo[c] = blo, block_hi[c] = bhi;
+    });
+    const float actual_lo = *std::min_element(block_lo.begin(), block_lo.end());
+    const float actual_hi = *std::max_element(block_hi.begin(), block_hi.end());
+    if (actual_lo < lo || actual_hi > hi) { // the guess was too narrow: histogram again
+        lo = actual_lo, hi = actual_hi;
+        inv_width = float(bins) / std::max(hi - lo, 1e-30f);
+        tbb::parallel_for(0, chunks, [&](int c) {
+            auto& hist = w.part[c];
+            hist.assign(bins, 0);
+            for (int y = n * c / chunks; y < n * (c + 1) / chunks; ++y) {
+                const float* row = &h[size_t(y) * n];
+                const float* next = &h[size_t((y + 1) % n) * n];
+                for (int x = 0; x < n; ++x) {
+                    const float h0 = row[x];
+                    const float v = (row[x + 1 < n ? x + 1 : 0] - h0) * ex + (next[x] - h0) * ey;
+                    ++hist[std::clamp(int((v - lo) * inv_width), 0, bins - 1)];
+                }
+            }
+        });
+    }
+    const float margin = 0.05f * (actual_hi - actual_lo);
+    w.lo = actual_lo - margin, w.hi = actual_hi + margin;
+    struct Range {
+        float lo, hi;
+    } const range{lo, hi};
+    // The transport map at the bin edges: the target quantile of each edge's rank. Inside a bin
+    // values are taken as evenly spread, so the map is linear there.
+    w.in_bin.assign(bins, 0);
+    for (int c = 0; c < chunks; ++c)
+        for (int b = 0; b < bins; ++b) w.in_bin[b] += w.part[c][b];
+    w.map.resize(bins + 1);
+    std::uint64_t below = 0;
+    const double inv_cells = 1.0 / double(cells);
+    for (int b = 0; b <= bins; ++b) {
+        w.map[b] = quantile(double(below) * inv_cells);
+        if (b < bins) below += w.in_bin[b];
+    }
+    // Pass 2: each gradient moves along e to its projection's image under the map.
+    const float dx = float(std::cos(psi) * ax), dy = float(std::sin(psi) * ay);
+    tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& rows) {
+        const float* map = w.map.data();
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            const float* row = &h[size_t(y) * n];
+            const float* next = &h[size_t((y + 1) % n) * n];
+            float* po = &p[size_t(y) * n];
+            float* qo = &q[size_t(y) * n];
+            for (int x = 0; x < n; ++x) {
+                const float h0 = row[x];
+                const float gx = row[x + 1 < n ? x + 1 : 0] - h0, gy = next[x] - h0;
+                const float v = gx * ex + gy * ey;
+                const float t = (v - range.lo) * inv_width;
+                const int b = std::min(bins - 1, int(t));
+                const float frac = std::min(1.0f, t - float(b));
+                const float d = map[b] + frac * (map[b + 1] - map[b]) - v;
+                po[x] = gx + dx * d;
+                qo[x] = gy + dy * d;
+            }
+        }
+    });
+}
+
+} // namespace
+
+double schwarz_error(const float* p, const float* q, int n, int x, int y) {
+    const int x1 = (x + 1) % n, y1 = (y + 1) % n;
+    const double a = p[size_t(y) * n + x], b = q[size_t(y) * n + x1];
+    const double c = p[size_t(y1) * n + x], d = q[size_t(y) * n + x];
+    const double sum = std::abs(a) + std::abs(b) + std::abs(c) + std::abs(d);
+    return sum > 0 ? std::abs(a + b - c - d) / sum : 0.0; // R19 Eq. 19, relative
+}
+
+void sample_slope_pool(const Ndf& ndf, int n, std::uint64_t seed, std::vector<float>& p,
+                       std::vector<float>& q) {
+    p.resize(size_t(n) * n);
+    q.resize(size_t(n) * n);
+    tbb::parallel_for(0, n, [&](int y) {
+        Rng rng{seed, 0x706f6f6cull /* "pool" */, std::uint64_t(y)};
+        for (int x = 0; x < n; ++x) {
+            const double u1 = rng.uniform(), u2 = rng.uniform();
+            const Vec3 m = ndf.sample_m(u1, u2);
+            const double z = std::max(m.z, 1e-6); // keep slopes finite at grazing normals
+            p[size_t(y) * n + x] = float(-m.x / z);
+            q[size_t(y) * n + x] = float(-m.y / z);
+        }
+    });
+}
+
+HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int threads, GenerationLog* log,
+                             const ProgressFn& progress) {
+    const auto start = Clock::now();
+    const int n = spec.size;
+    FrankotChellappa fc(n, threads);
+    GenerationLog local;
+    GenerationLog* lg = log ? log : &local;
+    *lg = GenerationLog{};
+
+    std::vector<float> pool_p, pool_q;
+    sample_slope_pool(ndf, n, spec.seed, pool_p, pool_q);
+    const size_t cells = size_t(n) * n;
+    // The gradient field is written straight into the integrator's FFTW buffers.
+    float* p = fc.gradient_x();
+    float* q = fc.gradient_y();
+    std::copy(pool_p.begin(), pool_p.end(), p);
+    std::copy(pool_q.begin(), pool_q.end(), q);
+    auto integrate = [&]() {
+        const auto t = Clock::now();
+        fc.integrate();
+        lg->integrate_seconds += since(t);
+    };
+    log_schwarz(p, q, n, spec.threshold, lg);
+    integrate();
+
+    const bool sliced = spec.generator == "sliced-matching";
+    double ax = 1, ay = 1;
+    std::unique_ptr<Quantiles> quantile;
+    SlicedWork work;
+    std::vector<int> assigned;
+    std::vector<float> h, gp, gq;
+    if (sliced) {
+        if (!ndf.slope_stretch(ax, ay))
+            throw std::invalid_argument("the sliced-matching generator needs a shape-invariant NDF; "
+                                        "use generator = \"algorithm1\"");
+        // The target's 1-D marginal in the stretched frame, where it is isotropic: both stretched
+        // components of the pool sample it, 2 n^2 values.
+        std::vector<float> marginal;
+        marginal.reserve(2 * cells);
+        for (size_t k = 0; k < cells; ++k)
+            marginal.push_back(float(pool_p[k] / ax)), marginal.push_back(float(pool_q[k] / ay));
+        tbb::parallel_sort(marginal.begin(), marginal.end());
+        quantile = std::make_unique<Quantiles>(std::move(marginal));
+    } else if (spec.generator == "algorithm1") {
+        assigned.resize(cells);
+        for (size_t k = 0; k < cells; ++k) assigned[k] = int(k);
+    } else {
+        throw std::invalid_argument("generate_surface: unknown generator '" + spec.generator + "'");
+    }
+
+    double best_distance = 1e30;
+    int stale = 0;
+    for (int it = 0; it < spec.iterations; ++it) {
+        const auto t = Clock::now();
+        if (sliced) {
+            sliced_step(fc.heights(), n, ax, ay, it * 2.39996322972865332 /* golden angle */,
+                        *quantile, work, p, q);
+        } else {
+            h.assign(fc.heights(), fc.heights() + cells);
+            differentiate(h, n, gp, gq); // the integrated surface's gradient, grad h+
+            // R19 Algorithm 1: cells whose assigned gradient breaks Schwarz's theorem (Eq. 19) give
+            // their pool values back; each then takes the unused pool value nearest to grad h+.
+            std::vector<int> bad;
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x)
+                    if (schwarz_error(p, q, n, x, y) > spec.threshold) bad.push_back(y * n + x);
+            std::vector<int> free_ids;
+            free_ids.reserve(bad.size());
+            for (int c : bad) free_ids.push_back(assigned[c]);
+            if (!bad.empty()) {
+                SlopeGrid grid(pool_p, pool_q, free_ids);
+                for (int c : bad) {
+                    const int id = grid.take_nearest(gp[c], gq[c]);
+                    assigned[c] = id;
+                    p[c] = pool_p[id];
+                    q[c] = pool_q[id];
+                }
+            }
+        }
+        lg->match_seconds += since(t);
+        // The last iteration is measured on every row; the others on every 8th (a monitor).
+        const auto ts = Clock::now();
+        log_schwarz(p, q, n, spec.threshold, lg, it + 1 == spec.iterations ? 1 : 8);
+        lg->schwarz_seconds += since(ts);
+        integrate();
+        lg->iterations = it + 1;
+        if (progress) progress(it + 1, spec.iterations);
+        if (spec.stop_when_converged && (it + 1) % 10 == 0) {
+            HeightField probe(n, 1.0);
+            probe.h.assign(fc.heights(), fc.heights() + cells);
+            const double d = ndf_distance(probe, ndf, 512);
+            lg->ndf_distance.push_back(d);
+            if (d < best_distance * (1 - 1e-3)) best_distance = d, stale = 0;
+            else if (++stale >= 3) {
+                lg->converged_early = true;
+                break;
+            }
+        }
+    }
+    HeightField out(n, spec.spacing);
+    // The generator works in grid units (slopes per sample step); heights scale with the spacing.
+    const float* heights = fc.heights();
+    for (size_t k = 0; k < cells; ++k) out.h[k] = float(heights[k] * spec.spacing);
+    lg->fft_seconds = fc.fft_seconds();
+    lg->seconds = since(start);
+    return out;
+}
+
+} // namespace gonio
