@@ -30,6 +30,23 @@ int main(int argc, char** argv) {
     model_cmd->add_option("--threads", model.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(0, 1024));
 
+    gonio::SurfaceOptions surface;
+    CLI::App* surface_cmd = app.add_subcommand(
+        "surface", "Generate (or reuse from the cache) the microsurface of every case; write EXR");
+    surface_cmd->add_option("config", surface.config, "TOML config file")->required();
+    surface_cmd->add_option("-o,--output", surface.output,
+                            "EXR height map (default: <config>_<case>.exr; with several cases the "
+                            "case name is appended)");
+    surface_cmd->add_option("--set", surface.overrides, "Override a config key (repeatable)");
+    surface_cmd->add_flag("--overwrite", surface.overwrite, "Replace existing output files");
+    surface_cmd->add_flag("-q,--quiet", surface.quiet, "No progress and no report");
+    surface_cmd->add_flag("--no-cache", surface.no_cache, "Neither read nor write the surface cache");
+    surface_cmd->add_option("--cache-dir", surface.cache_dir,
+                            "Surface cache directory (default: $GONIO_CACHE_DIR, else "
+                            "~/.cache/gonio/surfaces)");
+    surface_cmd->add_option("--threads", surface.threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(0, 1024));
+
     std::string info_path;
     bool info_json = false;
     CLI::App* info_cmd = app.add_subcommand("info", "Summarise a result file");
@@ -44,6 +61,7 @@ int main(int argc, char** argv) {
     }
     try {
         if (*model_cmd) return gonio::run_model_command(model);
+        if (*surface_cmd) return gonio::run_surface_command(surface);
         if (*info_cmd) return gonio::run_info_command(info_path, info_json);
     } catch (const gonio::ConfigError& e) {
         std::fprintf(stderr, "gonio: error: %s\n", e.what());

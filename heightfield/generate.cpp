@@ -12,7 +12,9 @@
 #include <stdexcept>
 
 #include "core/random.h"
+#include "heightfield/constraint_geometry.h"
 #include "heightfield/frankot_chellappa.h"
+#include "heightfield/heitz_surface.h"
 #include "heightfield/surface_metrics.h"
 
 namespace gonio {
@@ -289,10 +291,20 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
                              const ProgressFn& progress) {
     const auto start = Clock::now();
     const int n = spec.size;
-    FrankotChellappa fc(n, threads);
     GenerationLog local;
     GenerationLog* lg = log ? log : &local;
     *lg = GenerationLog{};
+    if (spec.generator == "heitz") {
+        double ax, ay;
+        if (ndf.name() != "beckmann" || !ndf.slope_stretch(ax, ay))
+            throw std::invalid_argument("the heitz generator makes Beckmann surfaces only");
+        HeightField s = heitz_surface(n, ax, ay, spec.correlation_length, spec.seed);
+        for (float& v : s.h) v = float(v * spec.spacing);
+        s.spacing = spec.spacing;
+        lg->seconds = since(start);
+        return s;
+    }
+    FrankotChellappa fc(n, threads);
 
     std::vector<float> pool_p, pool_q;
     sample_slope_pool(ndf, n, spec.seed, pool_p, pool_q);
@@ -300,8 +312,26 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
     // The gradient field is written straight into the integrator's FFTW buffers.
     float* p = fc.gradient_x();
     float* q = fc.gradient_y();
-    std::copy(pool_p.begin(), pool_p.end(), p);
-    std::copy(pool_q.begin(), pool_q.end(), q);
+    const bool constrained = spec.constraint != "none";
+    HeightField geometry;
+    if (constrained) {
+        // R19 5.3.2: the gradient field starts from a geometry; the pool still follows D.
+        geometry = constraint_geometry(spec.constraint, n, spec.lattice, spec.relief);
+        // Flat regions would give ties that rank matching can never separate: dither the
+        // geometry by a thousandth of a sample step (deterministic for the seed).
+        for (int y = 0; y < n; ++y) {
+            Rng rng{spec.seed, 0x646974686572ull /* "dither" */, std::uint64_t(y)};
+            for (int x = 0; x < n; ++x) geometry.h[size_t(y) * n + x] += float(1e-3 * (rng.uniform() - 0.5));
+        }
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                p[size_t(y) * n + x] = float(geometry.p(x, y));
+                q[size_t(y) * n + x] = float(geometry.q(x, y));
+            }
+    } else {
+        std::copy(pool_p.begin(), pool_p.end(), p);
+        std::copy(pool_q.begin(), pool_q.end(), q);
+    }
     auto integrate = [&]() {
         const auto t = Clock::now();
         fc.integrate();
@@ -331,6 +361,17 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
     } else if (spec.generator == "algorithm1") {
         assigned.resize(cells);
         for (size_t k = 0; k < cells; ++k) assigned[k] = int(k);
+        if (constrained) {
+            // Each cell takes the unused pool value nearest to the geometry's gradient.
+            SlopeGrid grid(pool_p, pool_q, assigned);
+            for (size_t c = 0; c < cells; ++c) {
+                const int id = grid.take_nearest(p[c], q[c]);
+                assigned[c] = id;
+                p[c] = pool_p[id];
+                q[c] = pool_q[id];
+            }
+            integrate();
+        }
     } else {
         throw std::invalid_argument("generate_surface: unknown generator '" + spec.generator + "'");
     }

@@ -17,6 +17,19 @@ struct ModelOptions {
 // `gonio model`: Model L1 of every case and incidence, written to HDF5.
 int run_model_command(const ModelOptions& options);
 
+struct SurfaceOptions {
+    std::string config;
+    std::string output;                // default: <config stem>_<case>.exr
+    std::vector<std::string> overrides;
+    bool overwrite = false;
+    bool quiet = false;
+    bool no_cache = false;
+    std::string cache_dir;             // default: default_cache_directory()
+    int threads = 0;
+};
+// `gonio surface`: the microsurface of every case (cached), its EXR height map and NDF comparison.
+int run_surface_command(const SurfaceOptions& options);
+
 // `gonio info FILE [--json]`.
 int run_info_command(const std::string& path, bool as_json);
 

@@ -19,19 +19,22 @@ namespace {
 // Every key a section may hold; anything else is reported as unknown.
 const std::map<std::string, std::vector<std::string>>& schema() {
     static const std::map<std::string, std::vector<std::string>> s = {
-        {"", {"seed", "name", "ndf", "material", "spectrum", "beam", "sensor", "model", "case"}},
-        {"case", {"name", "ndf", "material", "spectrum", "beam", "sensor", "model"}},
+        {"", {"seed", "name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface", "case"}},
+        {"case", {"name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface"}},
         {"ndf", {"type", "alpha", "alpha_x", "alpha_y"}},
         {"material", {"type", "eta", "ior", "n", "k", "f0"}},
         {"spectrum", {"wavelengths"}},
         {"beam", {"theta_i", "phi_i"}},
         {"sensor", {"cells"}},
         {"model", {"masking", "quadrature", "tolerance"}},
+        {"surface", {"generator", "constraint", "size", "spacing", "iterations", "threshold",
+                     "stop_when_converged", "lattice", "relief", "correlation_length", "input",
+                     "edges"}},
     };
     return s;
 }
-const std::vector<std::string> kSections = {"ndf",  "material", "spectrum",
-                                            "beam", "sensor",   "model"};
+const std::vector<std::string> kSections = {"ndf",    "material", "spectrum", "beam",
+                                            "sensor", "model",    "surface"};
 
 const Range kAlpha{1e-6, 100};
 const Range kThetaI{0, 90, false, true};
@@ -51,6 +54,7 @@ class Loader {
         check_sections(root_, "", "");
         TableReader top(&root_, "", nullptr, "", file_, usage_);
         cfg.seed = static_cast<std::uint64_t>(top.integer("seed", {0, 9.2e18}, 1));
+        seed_ = cfg.seed;
         const toml::node* cases = root_.get("case");
         if (cases) {
             usage_.mark(cases);
@@ -171,7 +175,45 @@ class Loader {
             masking == "uncorrelated" ? MaskingForm::uncorrelated : MaskingForm::height_correlated;
         c.quadrature.points = static_cast<int>(model.integer("quadrature", {1, 64}, 4));
         c.quadrature.rel_tol = model.number("tolerance", {1e-12, 0.1}, 1e-6);
+        load_surface(c, reader(t, path, "surface"));
         return c;
+    }
+
+    void load_surface(CaseConfig& c, TableReader r) {
+        SurfaceSpec& s = c.surface;
+        s.seed = seed_;
+        if (r.has("input")) {
+            // A measured height map replaces generation: generation keys would be unused.
+            s.input = r.any_string("input");
+            std::string resolved = s.input;
+            if (!resolved.empty() && resolved[0] != '/') {
+                const size_t slash = file_.find_last_of('/');
+                if (slash != std::string::npos) resolved = file_.substr(0, slash + 1) + resolved;
+            }
+            if (!std::ifstream(resolved)) r.fail("input", "cannot open height map " + resolved);
+            s.input = resolved;
+            s.edges = r.string("edges", {"periodic", "mirror"}, "periodic");
+            s.generator = "input";
+            return;
+        }
+        s.generator = r.string("generator", {"sliced-matching", "algorithm1", "heitz"}, "sliced-matching");
+        s.size = static_cast<int>(r.integer("size", {8, 16384}, 256));
+        s.spacing = r.number("spacing", {1e-9, 1e9, true, false}, 1.0);
+        if (s.generator == "heitz") {
+            if (c.ndf.type != "beckmann")
+                r.fail("generator", "\"heitz\" makes Beckmann surfaces only; this case's ndf.type is \"" +
+                                        c.ndf.type + "\"");
+            s.correlation_length = r.number("correlation_length", {0.5, 1e6}, 8.0);
+            return;
+        }
+        s.iterations = static_cast<int>(r.integer("iterations", {0, 1000000}, 500));
+        s.threshold = r.number("threshold", {0, 1, true, false}, 0.02);
+        s.stop_when_converged = r.boolean("stop_when_converged", false);
+        s.constraint = r.string("constraint", {"none", "domes", "holes"}, "none");
+        if (s.constraint != "none") {
+            s.lattice = static_cast<int>(r.integer("lattice", {1, double(s.size / 2)}, 8));
+            s.relief = r.number("relief", {1e-6, 100}, 0.5);
+        }
     }
 
     void load_ndf(CaseConfig& c, TableReader all) {
@@ -288,6 +330,7 @@ class Loader {
     const toml::table& root_;
     std::string file_;
     UsageTracker usage_;
+    std::uint64_t seed_ = 1;
 };
 
 } // namespace

@@ -5,6 +5,7 @@
 #include "gonio/material/fresnel_term.h"
 #include "gonio/model/cell_integrator.h"
 #include "heightfield/ndf/make_ndf.h"
+#include "heightfield/surface_spec.h"
 
 #include <cstdint>
 #include <string>
@@ -24,6 +25,7 @@ struct CaseConfig {
     int sensor_cells = 3240;
     MaskingForm masking = MaskingForm::height_correlated;
     CellQuadrature quadrature;
+    SurfaceSpec surface; // [surface]: how the microsurface is made (defaults if absent)
 };
 
 struct Config {

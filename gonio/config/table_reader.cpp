@@ -119,6 +119,13 @@ std::string TableReader::any_string(const std::string& key) {
     return *n.value<std::string>();
 }
 
+bool TableReader::boolean(const std::string& key, std::optional<bool> fallback) {
+    if (!has(key) && fallback) return *fallback;
+    const toml::node& n = require(key);
+    if (!n.is_boolean()) fail(key, "must be true or false, got " + type_name(n));
+    return *n.value<bool>();
+}
+
 std::string TableReader::string(const std::string& key, const std::vector<std::string>& allowed,
                                 std::optional<std::string> fallback) {
     if (!has(key) && fallback) return *fallback;

@@ -48,6 +48,7 @@ class TableReader {
     std::string string(const std::string& key, const std::vector<std::string>& allowed,
                        std::optional<std::string> fallback = std::nullopt);
     std::string any_string(const std::string& key);
+    bool boolean(const std::string& key, std::optional<bool> fallback = std::nullopt);
     double number(const std::string& key, const Range& range,
                   std::optional<double> fallback = std::nullopt);
     long long integer(const std::string& key, const Range& range,
