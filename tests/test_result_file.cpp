@@ -251,3 +251,29 @@ TEST_CASE("every config error path: exit code 2, one line naming file and key, n
     }
     fs::remove_all(d);
 }
+
+TEST_CASE("gonio surface writes the height map and NDF comparison, then reuses the cache") {
+    const fs::path d = fresh_dir("surface");
+    write(d / "s.toml", "[ndf]\ntype = \"ggx\"\nalpha = 0.3\n[beam]\ntheta_i = 0\n"
+                        "[surface]\nsize = 64\niterations = 20\n");
+    const std::string args = "surface s.toml -o out.exr --cache-dir cache";
+    const Run first = run_gonio(d, args);
+    CHECK(first.code == 0);
+    CHECK(first.out.find("generated with sliced-matching") != std::string::npos);
+    CHECK(first.out.find("effective alpha") != std::string::npos);
+    for (const char* f : {"out.exr", "out_ndf.exr", "out_ndf.csv"}) CHECK(fs::exists(d / f));
+    const Run again = run_gonio(d, args);
+    CHECK(again.code != 0); // outputs exist
+    CHECK(again.err.find("out.exr: exists; pass --overwrite") != std::string::npos);
+    const Run second = run_gonio(d, args + " --overwrite");
+    CHECK(second.code == 0);
+    CHECK(second.out.find("reused cached surface") != std::string::npos);
+    const Run bad = run_gonio(d, "surface s.toml --set surface.generator=heitz -o x.exr");
+    CHECK(bad.code == 2);
+    CHECK(bad.err.find("key 'surface.generator': \"heitz\" makes Beckmann surfaces only") != std::string::npos);
+    const Run missing = run_gonio(d, "surface s.toml --set surface.input=nothere.exr -o x.exr");
+    CHECK(missing.code == 2);
+    CHECK(missing.err.find("key 'surface.input': cannot open height map") != std::string::npos);
+    CHECK(!fs::exists(d / "x.exr"));
+    fs::remove_all(d);
+}
