@@ -12,9 +12,20 @@
 
 namespace gonio {
 
+namespace {
+// FFTW runs its parallel loops on TBB's workers (fftw_threads_set_callback, FFTW >= 3.3.9), so
+// that FFTW's own thread pool and TBB's do not compete for the same cores.
+void tbb_parallel_loop(void* (*work)(char*), char* jobdata, size_t elsize, int njobs, void*) {
+    tbb::parallel_for(0, njobs, [&](int j) { work(jobdata + elsize * size_t(j)); });
+}
+} // namespace
+
 void init_fftw_threads() {
     static std::once_flag once;
-    std::call_once(once, [] { fftwf_init_threads(); });
+    std::call_once(once, [] {
+        fftwf_init_threads();
+        fftwf_threads_set_callback(tbb_parallel_loop, nullptr);
+    });
 }
 
 FrankotChellappa::FrankotChellappa(int n, int threads) : n_(n) {

@@ -178,7 +178,7 @@ void sliced_step(const float* h, int n, double ax, double ay, double psi,
                  const Quantiles& quantile, SlicedWork& w, float* p, float* q) {
     const size_t cells = size_t(n) * n;
     const float ex = float(std::cos(psi) / ax), ey = float(std::sin(psi) / ay);
-    const int bins = 1 << 15, chunks = 4;
+    const int bins = 1 << 12, chunks = 4;
     w.part.resize(chunks);
     // Pass 1 (row blocks): gradient of h, its projection, the projections' range, and their
     // histogram over the previous iteration's range widened by 5 % (known before the pass).
