@@ -37,7 +37,7 @@ def main():
     top.semilogy(theta, target, "-", color="tab:green", label="target D cos")
     top.semilogy(theta, measured, ".", color="tab:red", label="surface triangles")
     top.set_ylabel("D(m) cos(theta_m)  [1/sr]")
-    top.set_ylim(bottom=max(target) * 1e-6)
+    top.set_ylim(max(target) * 1e-6, max(target) * 3)
     top.legend()
     top.set_title(title, fontsize=8)
     ratio = [m / t if t > 0 else float("nan") for m, t in zip(measured, target)]

@@ -107,6 +107,21 @@ int run_surface_command(const SurfaceOptions& o) {
             attrs.text["gonio_input"] = c.surface.input;
             attrs.text["gonio_edges"] = origin.edges;
         }
+        // The fidelity metrics travel with the surface.
+        attrs.numbers["gonio_ndf_distance"] = m.ndf_distance;
+        attrs.numbers["gonio_ndf_bins"] = m.ndf_bins;
+        attrs.numbers["gonio_alpha_eff_x"] = m.alpha_eff_x;
+        attrs.numbers["gonio_alpha_eff_y"] = m.alpha_eff_y;
+        attrs.numbers["gonio_alpha_rms_x"] = m.alpha_rms_x;
+        attrs.numbers["gonio_alpha_rms_y"] = m.alpha_rms_y;
+        attrs.numbers["gonio_height_rms"] = m.height_rms;
+        attrs.numbers["gonio_correlation_length_x"] = m.correlation_length_x;
+        attrs.numbers["gonio_correlation_length_y"] = m.correlation_length_y;
+        std::string histogram;
+        for (double v : m.height_histogram) histogram += (histogram.empty() ? "" : ",") + std::to_string(v);
+        attrs.text["gonio_height_histogram"] = histogram;
+        attrs.numbers["gonio_height_min"] = m.height_min;
+        attrs.numbers["gonio_height_max"] = m.height_max;
         write_height_exr(out, surface, attrs);
         write_ndf_comparison(sibling(out, "_ndf.exr"), sibling(out, "_ndf.csv"), m, ndf->describe());
         if (!origin.warning.empty()) std::fprintf(stderr, "gonio: warning: %s\n", origin.warning.c_str());
