@@ -6,18 +6,17 @@
 //
 // Usage: surface_bench [max_size=2048] [iterations=500] [threads=all]
 //        (R19 Algorithm 1 is run up to 512^2: its reassignment is far slower.)
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
+#include "heightfield/generate.h"
+#include "heightfield/ndf/beckmann.h"
+#include "heightfield/surface_metrics.h"
 
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <thread>
-
-#include "heightfield/generate.h"
-#include "heightfield/ndf/beckmann.h"
-#include "heightfield/surface_metrics.h"
+#include <unistd.h>
 
 using namespace gonio;
 
@@ -42,8 +41,8 @@ int main(int argc, char** argv) {
     const int iterations = argc > 2 ? std::atoi(argv[2]) : 500;
     const int threads = argc > 3 ? std::atoi(argv[3]) : int(std::thread::hardware_concurrency());
     const Beckmann ndf(0.75);
-    std::printf("Beckmann alpha = 0.75, %d iterations, %d threads, %u hardware threads\n", iterations,
-                threads, std::thread::hardware_concurrency());
+    std::printf("Beckmann alpha = 0.75, %d iterations, %d threads, %u hardware threads\n",
+                iterations, threads, std::thread::hardware_concurrency());
     std::printf("%-16s %6s %9s %9s %7s %9s %8s %8s %8s %9s %9s\n", "generator", "size", "total_s",
                 "ffts_s", "ratio", "integ_s", "TV", "alpha_x", "alpha_y", "schwarz", "peak_MiB");
     for (const std::string generator : {"sliced-matching", "algorithm1"}) {

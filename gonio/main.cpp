@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
     surface_cmd->add_option("--set", surface.overrides, "Override a config key (repeatable)");
     surface_cmd->add_flag("--overwrite", surface.overwrite, "Replace existing output files");
     surface_cmd->add_flag("-q,--quiet", surface.quiet, "No progress and no report");
-    surface_cmd->add_flag("--no-cache", surface.no_cache, "Neither read nor write the surface cache");
+    surface_cmd->add_flag("--no-cache", surface.no_cache,
+                          "Neither read nor write the surface cache");
     surface_cmd->add_option("--cache-dir", surface.cache_dir,
                             "Surface cache directory (default: $GONIO_CACHE_DIR, else "
                             "~/.cache/gonio/surfaces)");

@@ -7,7 +7,8 @@ namespace gonio {
 
 HeightField constraint_geometry(const std::string& kind, int n, int lattice, double relief) {
     if (kind != "domes" && kind != "holes")
-        throw std::invalid_argument("constraint must be \"domes\" or \"holes\", got \"" + kind + "\"");
+        throw std::invalid_argument("constraint must be \"domes\" or \"holes\", got \"" + kind +
+                                    "\"");
     if (lattice < 1 || lattice > n / 2) throw std::invalid_argument("lattice must be in [1, n/2]");
     HeightField s(n, 1.0);
     const double period = double(n) / lattice, radius = 0.4 * period;

@@ -1,9 +1,9 @@
 #pragma once
 // Geometries that constrained generation starts from [R19 5.3.2, Fig. 15]: a square lattice of
 // domes or of holes over the periodic patch.
-#include <string>
-
 #include "heightfield/heightfield.h"
+
+#include <string>
 
 namespace gonio {
 

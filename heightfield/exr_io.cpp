@@ -7,12 +7,11 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
+#include <unistd.h>
 
 namespace gonio {
 
@@ -45,7 +44,8 @@ void write_atomically(const std::string& path, Fill fill) {
 
 void write_channels_exr(const std::string& path, int width, int height,
                         const std::vector<std::string>& names,
-                        const std::vector<std::vector<float>>& channels, const ExrAttributes& attrs) {
+                        const std::vector<std::vector<float>>& channels,
+                        const ExrAttributes& attrs) {
     write_atomically(path, [&](const std::string& tmp) {
         Imf::Header header(width, height);
         for (const auto& name : names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
@@ -100,7 +100,8 @@ HeightField read_height_exr(const std::string& path, ExrAttributes* attrs) {
         }
         if (!(s.spacing > 0)) throw std::runtime_error("gonio_spacing must be > 0");
         for (float v : s.h)
-            if (!std::isfinite(v)) throw std::runtime_error("the height map holds NaN or infinite values");
+            if (!std::isfinite(v))
+                throw std::runtime_error("the height map holds NaN or infinite values");
         return s;
     } catch (const std::runtime_error& e) {
         const std::string what = e.what();

@@ -1,22 +1,23 @@
 #pragma once
 // Height maps as single-channel float OpenEXR images ("Y"), with gonio's metadata as header
 // attributes (gonio_spacing, gonio_ndf, gonio_seed, gonio_iterations, gonio_generator, ...).
+#include "heightfield/heightfield.h"
+
 #include <map>
 #include <string>
 #include <vector>
 
-#include "heightfield/heightfield.h"
-
 namespace gonio {
 
 struct ExrAttributes {
-    std::map<std::string, std::string> text;   // stored as string attributes
-    std::map<std::string, double> numbers;     // stored as double attributes
+    std::map<std::string, std::string> text; // stored as string attributes
+    std::map<std::string, double> numbers;   // stored as double attributes
 };
 
 // Writes `surface` to `path` (via a temporary file renamed when complete). Throws
 // std::runtime_error naming the file on failure.
-void write_height_exr(const std::string& path, const HeightField& surface, const ExrAttributes& attrs);
+void write_height_exr(const std::string& path, const HeightField& surface,
+                      const ExrAttributes& attrs);
 
 // Reads a single-channel square height map (channel Y, Z, H or R). The spacing comes from the
 // gonio_spacing attribute, else 1. Throws std::runtime_error naming the file when it is missing,
@@ -27,6 +28,7 @@ HeightField read_height_exr(const std::string& path, ExrAttributes* attrs = null
 // each width*height values row-major.
 void write_channels_exr(const std::string& path, int width, int height,
                         const std::vector<std::string>& names,
-                        const std::vector<std::vector<float>>& channels, const ExrAttributes& attrs);
+                        const std::vector<std::vector<float>>& channels,
+                        const ExrAttributes& attrs);
 
 } // namespace gonio

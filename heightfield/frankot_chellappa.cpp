@@ -1,14 +1,13 @@
 #include "heightfield/frankot_chellappa.h"
 
-#include <tbb/parallel_for.h>
+#include "core/math.h"
 
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
-
-#include "core/math.h"
+#include <tbb/parallel_for.h>
 
 namespace gonio {
 

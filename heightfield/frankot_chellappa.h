@@ -1,14 +1,13 @@
 #pragma once
 // Least-squares integration of a periodic gradient field (Frankot & Chellappa 1988; R19 Eq. 20-21)
-// with FFTW in single precision. gonio uses the forward-difference form: with a = e^{2 pi i u/n} - 1
-// and b = e^{2 pi i v/n} - 1 the discrete derivatives of h, the minimiser of
-// sum |D_x h - p|^2 + |D_y h - q|^2 is H = (conj(a) P + conj(b) Q) / (|a|^2 + |b|^2), H(0,0) = 0.
-// It is exact for the forward differences of any periodic surface, and those are the slopes of the
-// triangles rays see (heightfield.h); R19 Eq. 21 is its continuous limit, and the central
-// differences of R19 Eq. 22 would leave a null space at the Nyquist frequency.
-// Plans are made once (FFTW_ESTIMATE, so they do not depend on timing) and reused.
+// with FFTW in single precision. gonio uses the forward-difference form: with a = e^{2 pi i u/n} -
+// 1 and b = e^{2 pi i v/n} - 1 the discrete derivatives of h, the minimiser of sum |D_x h - p|^2 +
+// |D_y h - q|^2 is H = (conj(a) P + conj(b) Q) / (|a|^2 + |b|^2), H(0,0) = 0. It is exact for the
+// forward differences of any periodic surface, and those are the slopes of the triangles rays see
+// (heightfield.h); R19 Eq. 21 is its continuous limit, and the central differences of R19 Eq. 22
+// would leave a null space at the Nyquist frequency. Plans are made once (FFTW_ESTIMATE, so they do
+// not depend on timing) and reused.
 #include <fftw3.h>
-
 #include <vector>
 
 namespace gonio {

@@ -1,31 +1,33 @@
 #include "heightfield/generate.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
-
-#include <algorithm>
-#include <chrono>
-#include <limits>
-#include <memory>
-#include <cmath>
-#include <stdexcept>
-
 #include "core/random.h"
 #include "heightfield/constraint_geometry.h"
 #include "heightfield/frankot_chellappa.h"
 #include "heightfield/heitz_surface.h"
 #include "heightfield/surface_metrics.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
 namespace gonio {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 // Forward differences of h (per unit spacing: the generator works in grid units).
-void differentiate(const std::vector<float>& h, int n, std::vector<float>& p, std::vector<float>& q) {
+void differentiate(const std::vector<float>& h, int n, std::vector<float>& p,
+                   std::vector<float>& q) {
     p.resize(h.size());
     q.resize(h.size());
     tbb::parallel_for(0, n, [&](int y) {
@@ -73,7 +75,8 @@ void log_schwarz(const float* p, const float* q, int n, double threshold, Genera
 // A uniform grid over slope space holding the unused pool values (R19 Step 2), with swap-removal.
 class SlopeGrid {
   public:
-    SlopeGrid(const std::vector<float>& pp, const std::vector<float>& pq, const std::vector<int>& free_ids)
+    SlopeGrid(const std::vector<float>& pp, const std::vector<float>& pq,
+              const std::vector<int>& free_ids)
         : pp_(pp), pq_(pq) {
         const size_t count = free_ids.size();
         g_ = std::max(1, int(std::sqrt(double(count) / 4.0)));
@@ -126,7 +129,8 @@ class SlopeGrid {
         return std::clamp(int((v - lo) / w), 0, std::numeric_limits<int>::max());
     }
     size_t bin(float x, float y) const {
-        return size_t(std::min(cell(y, lo_y_, wy_), g_ - 1)) * g_ + std::min(cell(x, lo_x_, wx_), g_ - 1);
+        return size_t(std::min(cell(y, lo_y_, wy_), g_ - 1)) * g_ +
+               std::min(cell(x, lo_x_, wx_), g_ - 1);
     }
     const std::vector<float>& pp_;
     const std::vector<float>& pq_;
@@ -174,8 +178,8 @@ class Quantiles {
     std::vector<float> all_, table_;
 };
 
-void sliced_step(const float* h, int n, double ax, double ay, double psi,
-                 const Quantiles& quantile, SlicedWork& w, float* p, float* q) {
+void sliced_step(const float* h, int n, double ax, double ay, double psi, const Quantiles& quantile,
+                 SlicedWork& w, float* p, float* q) {
     const size_t cells = size_t(n) * n;
     const float ex = float(std::cos(psi) / ax), ey = float(std::sin(psi) / ay);
     const int bins = 1 << 12, chunks = 4;
@@ -185,40 +189,31 @@ void sliced_step(const float* h, int n, double ax, double ay, double psi,
     float lo = w.lo, hi = w.hi;
     float inv_width = float(bins) / std::max(hi - lo, 1e-30f);
     std::vector<float> block_lo(chunks), block_hi(chunks);
-    tbb::parallel_for(0, chunks, [&](int c) {
-        auto& hist = w.part[c];
-        hist.assign(bins, 0);
-        float blo = std::numeric_limits<float>::max(), bhi = -blo;
-        for (int y = n * c / chunks; y < n * (c + 1) / chunks; ++y) {
-            const float* row = &h[size_t(y) * n];
-            const float* next = &h[size_t((y + 1) % n) * n];
-            for (int x = 0; x < n; ++x) {
-                const float h0 = row[x];
-                const float v = (row[x + 1 < n ? x + 1 : 0] - h0) * ex + (next[x] - h0) * ey;
-                blo = std::min(blo, v), bhi = std::max(bhi, v);
-                ++hist[std::clamp(int((v - lo) * inv_width), 0, bins - 1)];
-            }
-        }
-        block_lo[c] = blo, block_hi[c] = bhi;
-    });
-    const float actual_lo = *std::min_element(block_lo.begin(), block_lo.end());
-    const float actual_hi = *std::max_element(block_hi.begin(), block_hi.end());
-    if (actual_lo < lo || actual_hi > hi) { // the guess was too narrow: histogram again
-        lo = actual_lo, hi = actual_hi;
-        inv_width = float(bins) / std::max(hi - lo, 1e-30f);
+    auto bin_projections = [&] {
         tbb::parallel_for(0, chunks, [&](int c) {
             auto& hist = w.part[c];
             hist.assign(bins, 0);
+            float blo = std::numeric_limits<float>::max(), bhi = -blo;
             for (int y = n * c / chunks; y < n * (c + 1) / chunks; ++y) {
                 const float* row = &h[size_t(y) * n];
                 const float* next = &h[size_t((y + 1) % n) * n];
                 for (int x = 0; x < n; ++x) {
                     const float h0 = row[x];
                     const float v = (row[x + 1 < n ? x + 1 : 0] - h0) * ex + (next[x] - h0) * ey;
+                    blo = std::min(blo, v), bhi = std::max(bhi, v);
                     ++hist[std::clamp(int((v - lo) * inv_width), 0, bins - 1)];
                 }
             }
+            block_lo[c] = blo, block_hi[c] = bhi;
         });
+    };
+    bin_projections();
+    const float actual_lo = *std::min_element(block_lo.begin(), block_lo.end());
+    const float actual_hi = *std::max_element(block_hi.begin(), block_hi.end());
+    if (actual_lo < lo || actual_hi > hi) { // the guess was too narrow: histogram again
+        lo = actual_lo, hi = actual_hi;
+        inv_width = float(bins) / std::max(hi - lo, 1e-30f);
+        bin_projections();
     }
     const float margin = 0.05f * (actual_hi - actual_lo);
     w.lo = actual_lo - margin, w.hi = actual_hi + margin;
@@ -287,8 +282,8 @@ void sample_slope_pool(const Ndf& ndf, int n, std::uint64_t seed, std::vector<fl
     });
 }
 
-HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int threads, GenerationLog* log,
-                             const ProgressFn& progress) {
+HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int threads,
+                             GenerationLog* log, const ProgressFn& progress) {
     const auto start = Clock::now();
     const int n = spec.size;
     GenerationLog local;
@@ -321,7 +316,8 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
         // geometry by a thousandth of a sample step (deterministic for the seed).
         for (int y = 0; y < n; ++y) {
             Rng rng{spec.seed, 0x646974686572ull /* "dither" */, std::uint64_t(y)};
-            for (int x = 0; x < n; ++x) geometry.h[size_t(y) * n + x] += float(1e-3 * (rng.uniform() - 0.5));
+            for (int x = 0; x < n; ++x)
+                geometry.h[size_t(y) * n + x] += float(1e-3 * (rng.uniform() - 0.5));
         }
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) {
@@ -348,8 +344,9 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
     std::vector<float> h, gp, gq;
     if (sliced) {
         if (!ndf.slope_stretch(ax, ay))
-            throw std::invalid_argument("the sliced-matching generator needs a shape-invariant NDF; "
-                                        "use generator = \"algorithm1\"");
+            throw std::invalid_argument(
+                "the sliced-matching generator needs a shape-invariant NDF; "
+                "use generator = \"algorithm1\"");
         // The target's 1-D marginal in the stretched frame, where it is isotropic: both stretched
         // components of the pool sample it, 2 n^2 values.
         std::vector<float> marginal;
@@ -418,7 +415,8 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
             probe.h.assign(fc.heights(), fc.heights() + cells);
             const double d = ndf_distance(probe, ndf, 512);
             lg->ndf_distance.push_back(d);
-            if (d < best_distance * (1 - 1e-3)) best_distance = d, stale = 0;
+            if (d < best_distance * (1 - 1e-3))
+                best_distance = d, stale = 0;
             else if (++stale >= 3) {
                 lg->converged_early = true;
                 break;

@@ -2,26 +2,28 @@
 // Surfaces whose facets follow a distribution: R19 Algorithm 1 (section 4.2, Eq. 19-22) and a
 // sliced-optimal-transport matching variant, both on forward-difference Frankot-Chellappa
 // (frankot_chellappa.h).
-#include <functional>
-#include <vector>
-
 #include "heightfield/heightfield.h"
 #include "heightfield/ndf/ndf.h"
 #include "heightfield/surface_spec.h"
 
+#include <functional>
+#include <vector>
+
 namespace gonio {
 
 struct GenerationLog {
-    std::vector<double> schwarz_mean;     // mean relative Schwarz error of the assigned field, per iteration
-    std::vector<double> above_threshold;  // fraction of cells above the threshold, per iteration
-    std::vector<double> ndf_distance;     // fidelity checks when stop_when_converged (every 10 iterations)
-    int iterations = 0;                   // iterations done
+    std::vector<double>
+        schwarz_mean; // mean relative Schwarz error of the assigned field, per iteration
+    std::vector<double> above_threshold; // fraction of cells above the threshold, per iteration
+    std::vector<double>
+        ndf_distance;   // fidelity checks when stop_when_converged (every 10 iterations)
+    int iterations = 0; // iterations done
     bool converged_early = false;
-    double seconds = 0;                   // total wall time
-    double integrate_seconds = 0;         // of which Frankot-Chellappa integration
-    double fft_seconds = 0;               // of which the FFTs alone (fftwf_execute)
-    double match_seconds = 0;             // of which the matching steps
-    double schwarz_seconds = 0;           // of which the Schwarz-error log
+    double seconds = 0;           // total wall time
+    double integrate_seconds = 0; // of which Frankot-Chellappa integration
+    double fft_seconds = 0;       // of which the FFTs alone (fftwf_execute)
+    double match_seconds = 0;     // of which the matching steps
+    double schwarz_seconds = 0;   // of which the Schwarz-error log
 };
 
 using ProgressFn = std::function<void(int done, int total)>;

@@ -7,20 +7,21 @@
 // with the forward differences p(x, y) = (h(x+1, y) - h(x, y)) / spacing and
 // q(x, y) = (h(x, y+1) - h(x, y)) / spacing (indices wrap). A facet of slopes (p, q) has the normal
 // m = (-p, -q, 1) / |(-p, -q, 1)|, and both triangles of a cell have the same projected area.
+#include "core/math.h"
+
 #include <cstddef>
 #include <vector>
-
-#include "core/math.h"
 
 namespace gonio {
 
 struct HeightField {
-    int n = 0;             // samples per side
-    double spacing = 1.0;  // distance between samples, in the units of the heights
-    std::vector<float> h;  // row-major: h[y * n + x]
+    int n = 0;            // samples per side
+    double spacing = 1.0; // distance between samples, in the units of the heights
+    std::vector<float> h; // row-major: h[y * n + x]
 
     HeightField() = default;
-    HeightField(int size, double spacing_) : n(size), spacing(spacing_), h(size_t(size) * size, 0.0f) {}
+    HeightField(int size, double spacing_)
+        : n(size), spacing(spacing_), h(size_t(size) * size, 0.0f) {}
 
     int wrap(int i) const { return ((i % n) + n) % n; }
     float at(int x, int y) const { return h[size_t(wrap(y)) * n + wrap(x)]; }
@@ -28,8 +29,10 @@ struct HeightField {
     double q(int x, int y) const { return (double(at(x, y + 1)) - at(x, y)) / spacing; }
     // Slopes of triangle t (0: A, 1: B) of cell (x, y).
     void triangle_slopes(int x, int y, int t, double& sp, double& sq) const {
-        if (t == 0) sp = p(x, y), sq = q(x, y);
-        else sp = p(x, y + 1), sq = q(x + 1, y);
+        if (t == 0)
+            sp = p(x, y), sq = q(x, y);
+        else
+            sp = p(x, y + 1), sq = q(x + 1, y);
     }
     static Vec3 normal_of_slopes(double sp, double sq) { return normalize(Vec3{-sp, -sq, 1.0}); }
 };

@@ -1,20 +1,20 @@
 #include "heightfield/heitz_surface.h"
 
-#include <fftw3.h>
-
-#include <cmath>
-#include <mutex>
-#include <stdexcept>
-
 #include "core/random.h"
 #include "heightfield/frankot_chellappa.h"
+
+#include <cmath>
+#include <fftw3.h>
+#include <mutex>
+#include <stdexcept>
 
 namespace gonio {
 
 HeightField heitz_surface(int n, double alpha_x, double alpha_y, double correlation_length,
                           std::uint64_t seed) {
     if (n < 2 || !(correlation_length > 0) || !(alpha_x > 0) || !(alpha_y > 0))
-        throw std::invalid_argument("heitz_surface: needs n >= 2, alpha > 0, correlation length > 0");
+        throw std::invalid_argument(
+            "heitz_surface: needs n >= 2, alpha > 0, correlation length > 0");
     const int w = n / 2 + 1;
     fftwf_complex* spec = fftwf_alloc_complex(size_t(n) * w);
     float* real = fftwf_alloc_real(size_t(n) * n);
@@ -38,7 +38,8 @@ HeightField heitz_surface(int n, double alpha_x, double alpha_y, double correlat
             const double kx = kTwoPi * u / n;
             const double amp = std::exp(-0.25 * (kx * kx * lx * lx + ky * ky * ly * ly));
             // A complex Gaussian coefficient: random phase, Rayleigh modulus (Box-Muller).
-            const double r = std::sqrt(-2.0 * std::log1p(-rng.uniform())), phase = kTwoPi * rng.uniform();
+            const double r = std::sqrt(-2.0 * std::log1p(-rng.uniform())),
+                         phase = kTwoPi * rng.uniform();
             const bool dc = u == 0 && v == 0;
             spec[size_t(v) * w + u][0] = dc ? 0.0f : float(amp * r * std::cos(phase));
             spec[size_t(v) * w + u][1] = dc ? 0.0f : float(amp * r * std::sin(phase));

@@ -6,9 +6,9 @@
 // spectrum), so the surface is periodic. Slopes of a Gaussian field are Gaussian: the field is
 // scaled so that the RMS forward-difference slope along x is alpha_x / sqrt(2), and the spectrum is
 // stretched by alpha so that y follows alpha_y.
-#include <cstdint>
-
 #include "heightfield/heightfield.h"
+
+#include <cstdint>
 
 namespace gonio {
 

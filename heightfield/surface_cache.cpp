@@ -33,13 +33,16 @@ std::string surface_cache_key(const Ndf& ndf, const SurfaceSpec& spec) {
 
 std::string default_cache_directory() {
     if (const char* d = std::getenv("GONIO_CACHE_DIR")) return d;
-    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/gonio/surfaces";
+    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
+        return std::string(x) + "/gonio/surfaces";
     if (const char* home = std::getenv("HOME"); home && *home)
         return std::string(home) + "/.cache/gonio/surfaces";
     return ".gonio-cache";
 }
 
-std::string SurfaceCache::path(const std::string& key) const { return dir_ + "/" + key + ".exr"; }
+std::string SurfaceCache::path(const std::string& key) const {
+    return dir_ + "/" + key + ".exr";
+}
 
 std::optional<HeightField> SurfaceCache::load(const std::string& key, const std::string& identity,
                                               ExrAttributes* attrs) const {

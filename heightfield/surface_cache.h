@@ -2,12 +2,12 @@
 // Generated surfaces are cached on disk as EXR height maps, keyed by a hash of everything that
 // defines them (NDF and its parameters, generator, size, spacing, iterations, threshold, seed,
 // ...), so that sweeps and repeated runs never regenerate a surface.
-#include <optional>
-#include <string>
-
 #include "heightfield/exr_io.h"
 #include "heightfield/ndf/ndf.h"
 #include "heightfield/surface_spec.h"
+
+#include <optional>
+#include <string>
 
 namespace gonio {
 
@@ -29,7 +29,8 @@ class SurfaceCache {
     // The cached surface, if present and its stored identity matches (guards against collisions).
     std::optional<HeightField> load(const std::string& key, const std::string& identity,
                                     ExrAttributes* attrs = nullptr) const;
-    void store(const std::string& key, const HeightField& surface, const ExrAttributes& attrs) const;
+    void store(const std::string& key, const HeightField& surface,
+               const ExrAttributes& attrs) const;
 
   private:
     std::string dir_;

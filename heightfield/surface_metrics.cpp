@@ -1,12 +1,12 @@
 #include "heightfield/surface_metrics.h"
 
-#include <algorithm>
-#include <cmath>
-
-#include "core/quadrature.h"
 #include "core/random.h"
 #include "heightfield/frankot_chellappa.h"
 #include "sensor/beckers_sensor.h"
+#include "sensor/cell_integral.h"
+
+#include <algorithm>
+#include <cmath>
 
 namespace gonio {
 
@@ -46,36 +46,13 @@ double correlation_length(const std::vector<float>& acf, int n, bool along_x) {
 } // namespace
 
 std::vector<double> target_cell_mass(const Ndf& ndf, int bins) {
-    const BeckersSensor sensor(bins);
-    const GaussLegendre& gl = gauss_legendre(8);
-    std::vector<double> mass(bins, 0.0);
-    for (int c = 0; c < bins; ++c) {
-        const SensorCell& cell = sensor.cell(c);
-        const double z0 = std::cos(cell.theta_max), z1 = std::cos(cell.theta_min);
-        double sum = 0;
-        for (int qz = 0; qz < 2; ++qz)
-            for (int qp = 0; qp < 2; ++qp) {
-                const double a = z0 + (z1 - z0) * qz / 2, b = z0 + (z1 - z0) * (qz + 1) / 2;
-                const double p0 = cell.phi_min + (cell.phi_max - cell.phi_min) * qp / 2;
-                const double p1 = cell.phi_min + (cell.phi_max - cell.phi_min) * (qp + 1) / 2;
-                for (int i = 0; i < 8; ++i) {
-                    const double z = 0.5 * (a + b) + 0.5 * (b - a) * gl.nodes[i];
-                    const double r = std::sqrt(std::max(0.0, 1 - z * z));
-                    for (int j = 0; j < 8; ++j) {
-                        const double p = 0.5 * (p0 + p1) + 0.5 * (p1 - p0) * gl.nodes[j];
-                        sum += gl.weights[i] * gl.weights[j] * 0.25 * (b - a) * (p1 - p0) *
-                               ndf.pdf_m({r * std::cos(p), r * std::sin(p), z});
-                    }
-                }
-            }
-        mass[c] = sum;
-    }
-    return mass;
+    return integrate_over_cells(BeckersSensor(bins), [&](const Vec3& m) { return ndf.pdf_m(m); });
 }
 
 double ndf_distance(const HeightField& surface, const Ndf& ndf, int bins) {
     const BeckersSensor sensor(bins);
-    const std::vector<double> m = measured_cell_mass(surface, sensor), t = target_cell_mass(ndf, bins);
+    const std::vector<double> m = measured_cell_mass(surface, sensor),
+                              t = target_cell_mass(ndf, bins);
     double tv = 0;
     for (int c = 0; c < bins; ++c) tv += std::abs(m[c] - t[c]);
     return 0.5 * tv;
@@ -87,7 +64,8 @@ SurfaceMetrics measure_surface(const HeightField& s, const Ndf& ndf, int bins) {
     r.ndf_bins = bins;
     r.measured_mass = measured_cell_mass(s, sensor);
     r.target_mass = target_cell_mass(ndf, bins);
-    for (int c = 0; c < bins; ++c) r.ndf_distance += 0.5 * std::abs(r.measured_mass[c] - r.target_mass[c]);
+    for (int c = 0; c < bins; ++c)
+        r.ndf_distance += 0.5 * std::abs(r.measured_mass[c] - r.target_mass[c]);
 
     // Slopes of every triangle.
     const size_t tri = size_t(2) * s.n * s.n;
@@ -113,7 +91,8 @@ SurfaceMetrics measure_surface(const HeightField& s, const Ndf& ndf, int bins) {
         const double z = std::max(n.z, 1e-6);
         tx[i] = float(-n.x / z), ty[i] = float(-n.y / z);
     }
-    const double ratio_x = median_abs(px) / median_abs(tx), ratio_y = median_abs(py) / median_abs(ty);
+    const double ratio_x = median_abs(px) / median_abs(tx),
+                 ratio_y = median_abs(py) / median_abs(ty);
     double ax = 0, ay = 0;
     if (ndf.slope_stretch(ax, ay)) {
         r.target_alpha_x = ax, r.target_alpha_y = ay;
@@ -125,14 +104,18 @@ SurfaceMetrics measure_surface(const HeightField& s, const Ndf& ndf, int bins) {
     // Heights.
     double mean = 0;
     r.height_min = 1e300, r.height_max = -1e300;
-    for (float v : s.h) mean += v, r.height_min = std::min(r.height_min, double(v)), r.height_max = std::max(r.height_max, double(v));
+    for (float v : s.h)
+        mean += v, r.height_min = std::min(r.height_min, double(v)),
+                   r.height_max = std::max(r.height_max, double(v));
     mean /= double(s.h.size());
     double var = 0;
     for (float v : s.h) var += (v - mean) * (v - mean);
     r.height_rms = std::sqrt(var / double(s.h.size()));
     r.height_histogram.assign(64, 0.0);
     const double span = std::max(1e-30, r.height_max - r.height_min);
-    for (float v : s.h) r.height_histogram[std::min(63, int((v - r.height_min) / span * 64))] += 1.0 / double(s.h.size());
+    for (float v : s.h)
+        r.height_histogram[std::min(63, int((v - r.height_min) / span * 64))] +=
+            1.0 / double(s.h.size());
     FrankotChellappa fft(s.n, 1);
     std::vector<float> acf;
     fft.autocorrelation(s.h, acf);

@@ -1,17 +1,18 @@
 #pragma once
 // How faithfully a surface's facets follow a distribution, measured on the triangles rays see
-// (heightfield.h), each weighted by its projected area (equal for all), i.e. against D(m) cos(theta_m).
-#include <vector>
-
+// (heightfield.h), each weighted by its projected area (equal for all), i.e. against D(m)
+// cos(theta_m).
 #include "heightfield/heightfield.h"
 #include "heightfield/ndf/ndf.h"
+
+#include <vector>
 
 namespace gonio {
 
 struct SurfaceMetrics {
     // Total-variation distance 1/2 sum |measured - target| between the facet-normal distribution
-    // and D(m) cos(theta_m), on `ndf_bins` equal-area Beckers cells of the hemisphere (0: identical,
-    // 1: disjoint).
+    // and D(m) cos(theta_m), on `ndf_bins` equal-area Beckers cells of the hemisphere (0:
+    // identical, 1: disjoint).
     double ndf_distance = 0;
     int ndf_bins = 0;
     std::vector<double> measured_mass, target_mass; // per Beckers cell
@@ -20,7 +21,8 @@ struct SurfaceMetrics {
     // infinite), and sqrt(2) times the RMS slope (Beckmann's alpha definition).
     double alpha_eff_x = 0, alpha_eff_y = 0;
     double alpha_rms_x = 0, alpha_rms_y = 0;
-    double target_alpha_x = 0, target_alpha_y = 0; // 0 when the NDF has no stretch (not shape-invariant)
+    double target_alpha_x = 0,
+           target_alpha_y = 0; // 0 when the NDF has no stretch (not shape-invariant)
     // Heights: RMS, histogram (64 bins over [min, max]), autocorrelation length along x and y (the
     // lag where the autocorrelation falls to 1/e, in the units of the spacing).
     double height_rms = 0, height_min = 0, height_max = 0;

@@ -1,9 +1,9 @@
 #include "heightfield/surface_source.h"
 
+#include "gonio_version.h"
+
 #include <cmath>
 #include <sstream>
-
-#include "gonio_version.h"
 
 namespace gonio {
 
@@ -27,8 +27,10 @@ std::vector<double> split(const std::string& s) {
 double seam_ratio(const HeightField& s) {
     double seam = 0, inner = 0;
     for (int k = 0; k < s.n; ++k) {
-        seam += std::abs(double(s.at(0, k)) - s.at(s.n - 1, k)) + std::abs(double(s.at(k, 0)) - s.at(k, s.n - 1));
-        inner += std::abs(double(s.at(1, k)) - s.at(0, k)) + std::abs(double(s.at(k, 1)) - s.at(k, 0));
+        seam += std::abs(double(s.at(0, k)) - s.at(s.n - 1, k)) +
+                std::abs(double(s.at(k, 0)) - s.at(k, s.n - 1));
+        inner +=
+            std::abs(double(s.at(1, k)) - s.at(0, k)) + std::abs(double(s.at(k, 1)) - s.at(k, 0));
     }
     return inner > 0 ? seam / inner : (seam > 0 ? 1e9 : 1.0);
 }
@@ -43,7 +45,8 @@ HeightField mirror_tile(const HeightField& s) {
     return out;
 }
 
-ExrAttributes surface_attributes(const Ndf& ndf, const SurfaceSpec& spec, const GenerationLog& log) {
+ExrAttributes surface_attributes(const Ndf& ndf, const SurfaceSpec& spec,
+                                 const GenerationLog& log) {
     ExrAttributes a;
     a.text["gonio_identity"] = surface_identity(ndf, spec);
     a.text["gonio_ndf"] = ndf.describe();

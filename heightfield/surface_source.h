@@ -1,21 +1,21 @@
 #pragma once
 // Where a case's microsurface comes from: the cache, the generator, or a measured height map.
 // gonio surface and (later) gonio run both go through here, so a sweep never regenerates.
-#include <string>
-
 #include "heightfield/generate.h"
 #include "heightfield/surface_cache.h"
+
+#include <string>
 
 namespace gonio {
 
 struct SurfaceOrigin {
     bool from_cache = false;
     bool generated = false;
-    bool loaded = false;          // from surface.input
-    std::string cache_path;       // where it is (or was stored) in the cache, if enabled
-    std::string edges;            // loaded maps: how the edges were handled
-    std::string warning;          // e.g. a non-periodic measured map
-    GenerationLog log;            // when generated, or as stored with a cached surface
+    bool loaded = false;    // from surface.input
+    std::string cache_path; // where it is (or was stored) in the cache, if enabled
+    std::string edges;      // loaded maps: how the edges were handled
+    std::string warning;    // e.g. a non-periodic measured map
+    GenerationLog log;      // when generated, or as stored with a cached surface
 };
 
 // Gets the surface of (ndf, spec), through `cache` when enabled.

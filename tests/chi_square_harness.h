@@ -3,9 +3,9 @@
 // bin samples on an equal-area Beckers partition of the hemisphere, integrate the pdf over every
 // cell for the expected counts, pool low-count cells, and return Pearson's statistic and p-value.
 #include "core/chi_square.h"
-#include "core/quadrature.h"
 #include "core/random.h"
 #include "sensor/beckers_sensor.h"
+#include "sensor/cell_integral.h"
 
 #include <cstdint>
 #include <functional>
@@ -35,30 +35,12 @@ inline DirectionChiSquare chi_square_directions(const std::function<Vec3(double,
         }
         observed[sensor.lookup(d)] += 1;
     }
-    // Expected counts: 8x8 Gauss-Legendre on each quarter of each cell, in (cos theta, phi).
-    const GaussLegendre& gl = gauss_legendre(8);
+    // Expected counts: the pdf integrated over each cell.
+    const std::vector<double> mass = integrate_over_cells(sensor, pdf);
     double total = 0;
     for (int c = 0; c < cells; ++c) {
-        const SensorCell& cell = sensor.cell(c);
-        const double z0 = std::cos(cell.theta_max), z1 = std::cos(cell.theta_min);
-        double sum = 0;
-        for (int qz = 0; qz < 2; ++qz)
-            for (int qp = 0; qp < 2; ++qp) {
-                const double a = z0 + (z1 - z0) * qz / 2, b = z0 + (z1 - z0) * (qz + 1) / 2;
-                const double p0 = cell.phi_min + (cell.phi_max - cell.phi_min) * qp / 2;
-                const double p1 = cell.phi_min + (cell.phi_max - cell.phi_min) * (qp + 1) / 2;
-                for (int i = 0; i < 8; ++i) {
-                    const double z = 0.5 * (a + b) + 0.5 * (b - a) * gl.nodes[i];
-                    const double r = std::sqrt(std::max(0.0, 1 - z * z));
-                    for (int j = 0; j < 8; ++j) {
-                        const double p = 0.5 * (p0 + p1) + 0.5 * (p1 - p0) * gl.nodes[j];
-                        sum += gl.weights[i] * gl.weights[j] * 0.25 * (b - a) * (p1 - p0) *
-                               pdf({r * std::cos(p), r * std::sin(p), z});
-                    }
-                }
-            }
-        expected[c] = sum * samples;
-        total += sum;
+        expected[c] = mass[c] * samples;
+        total += mass[c];
     }
     return {chi_square_test(observed, expected), total};
 }

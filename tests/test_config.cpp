@@ -229,22 +229,29 @@ TEST_CASE("surface config: defaults, values and errors") {
     CHECK(d.cases[0].surface.iterations == 500);
     CHECK(d.cases[0].surface.threshold == 0.02);
     CHECK(d.cases[0].surface.seed == 7); // the run's seed
-    const Config c = parse_config(std::string(kBase) + "[surface]\ngenerator = \"algorithm1\"\nsize = 64\n"
-                                                       "constraint = \"domes\"\nlattice = 4\n",
-                                  "t.toml");
+    const Config c =
+        parse_config(std::string(kBase) + "[surface]\ngenerator = \"algorithm1\"\nsize = 64\n"
+                                          "constraint = \"domes\"\nlattice = 4\n",
+                     "t.toml");
     CHECK(c.cases[0].surface.generator == "algorithm1");
     CHECK(c.cases[0].surface.lattice == 4);
     auto err = [](const std::string& extra) {
         return std::string(error_of(std::string(kBase) + "[surface]\n" + extra).what());
     };
-    CHECK(contains(err("generator = \"magic\"\n"), "key 'surface.generator': \"magic\" is not allowed"));
-    CHECK(contains(err("size = 4\n"), "key 'surface.size': value 4 is out of range; allowed [8, 16384]"));
+    CHECK(contains(err("generator = \"magic\"\n"),
+                   "key 'surface.generator': \"magic\" is not allowed"));
+    CHECK(contains(err("size = 4\n"),
+                   "key 'surface.size': value 4 is out of range; allowed [8, 16384]"));
     CHECK(contains(err("threshold = 0\n"), "allowed (0, 1]"));
     CHECK(contains(err("stop_when_converged = 1\n"), "must be true or false"));
     CHECK(contains(err("size = 64\nconstraint = \"domes\"\nlattice = 40\n"), "allowed [1, 32]"));
-    CHECK(contains(err("correlation_length = 4\n"), "key 'surface.correlation_length': is not used"));
+    CHECK(
+        contains(err("correlation_length = 4\n"), "key 'surface.correlation_length': is not used"));
     CHECK(contains(err("lattice = 4\n"), "key 'surface.lattice': is not used"));
-    CHECK(contains(error_of(std::string(kBase) + "[surface]\ngenerator = \"heitz\"\n", {"ndf.type=ggx"}).what(),
-                   "\"heitz\" makes Beckmann surfaces only"));
-    CHECK(contains(err("input = \"missing.exr\"\n"), "key 'surface.input': cannot open height map missing.exr"));
+    CHECK(contains(
+        error_of(std::string(kBase) + "[surface]\ngenerator = \"heitz\"\n", {"ndf.type=ggx"})
+            .what(),
+        "\"heitz\" makes Beckmann surfaces only"));
+    CHECK(contains(err("input = \"missing.exr\"\n"),
+                   "key 'surface.input': cannot open height map missing.exr"));
 }

@@ -270,7 +270,8 @@ TEST_CASE("gonio surface writes the height map and NDF comparison, then reuses t
     CHECK(second.out.find("reused cached surface") != std::string::npos);
     const Run bad = run_gonio(d, "surface s.toml --set surface.generator=heitz -o x.exr");
     CHECK(bad.code == 2);
-    CHECK(bad.err.find("key 'surface.generator': \"heitz\" makes Beckmann surfaces only") != std::string::npos);
+    CHECK(bad.err.find("key 'surface.generator': \"heitz\" makes Beckmann surfaces only") !=
+          std::string::npos);
     const Run missing = run_gonio(d, "surface s.toml --set surface.input=nothere.exr -o x.exr");
     CHECK(missing.code == 2);
     CHECK(missing.err.find("key 'surface.input': cannot open height map") != std::string::npos);

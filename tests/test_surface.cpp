@@ -1,13 +1,3 @@
-#include <doctest/doctest.h>
-#include <tbb/global_control.h>
-
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <memory>
-#include <unistd.h>
-
 #include "core/random.h"
 #include "heightfield/exr_io.h"
 #include "heightfield/frankot_chellappa.h"
@@ -16,6 +6,15 @@
 #include "heightfield/ndf/ggx.h"
 #include "heightfield/surface_metrics.h"
 #include "heightfield/surface_source.h"
+
+#include <cmath>
+#include <cstdio>
+#include <doctest/doctest.h>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <tbb/global_control.h>
+#include <unistd.h>
 
 using namespace gonio;
 namespace fs = std::filesystem;
@@ -87,7 +86,8 @@ TEST_CASE("Frankot-Chellappa recovers a periodic surface from its exact gradient
         FrankotChellappa fc(n, 2);
         fc.integrate(p, q, out);
         double worst = 0;
-        for (size_t k = 0; k < h.size(); ++k) worst = std::max(worst, std::abs(out[k] - (h[k] - mean)));
+        for (size_t k = 0; k < h.size(); ++k)
+            worst = std::max(worst, std::abs(out[k] - (h[k] - mean)));
         CAPTURE(n);
         CHECK(worst < 2e-5); // float round-off of the transforms
     }
@@ -205,7 +205,8 @@ TEST_CASE("the surface cache returns the same surface and never regenerates it")
     CHECK(a.h == b.h);
     REQUIRE(second.log.schwarz_mean.size() == first.log.schwarz_mean.size());
     for (size_t k = 0; k < first.log.schwarz_mean.size(); ++k)
-        CHECK(second.log.schwarz_mean[k] == doctest::Approx(first.log.schwarz_mean[k]).epsilon(1e-9));
+        CHECK(second.log.schwarz_mean[k] ==
+              doctest::Approx(first.log.schwarz_mean[k]).epsilon(1e-9));
     spec.iterations = 21; // anything that defines the surface changes the key
     obtain_surface(ndf, spec, cache, 2, other);
     CHECK(other.generated);

@@ -19,12 +19,12 @@ int run_model_command(const ModelOptions& options);
 
 struct SurfaceOptions {
     std::string config;
-    std::string output;                // default: <config stem>_<case>.exr
+    std::string output; // default: <config stem>_<case>.exr
     std::vector<std::string> overrides;
     bool overwrite = false;
     bool quiet = false;
     bool no_cache = false;
-    std::string cache_dir;             // default: default_cache_directory()
+    std::string cache_dir; // default: default_cache_directory()
     int threads = 0;
 };
 // `gonio surface`: the microsurface of every case (cached), its EXR height map and NDF comparison.

@@ -1,18 +1,17 @@
-#include <tbb/global_control.h>
-
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <memory>
-#include <thread>
-
 #include "gonio/cli/commands.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
 #include "heightfield/surface_metrics.h"
 #include "heightfield/surface_source.h"
 #include "sensor/beckers_sensor.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <tbb/global_control.h>
+#include <thread>
 
 namespace gonio {
 
@@ -25,7 +24,8 @@ std::string output_for(const SurfaceOptions& o, const Config& cfg, const CaseCon
     if (!o.output.empty() && cfg.cases.size() == 1) return o.output;
     if (!o.output.empty()) {
         const fs::path p(o.output);
-        return (p.parent_path() / (p.stem().string() + "_" + c.name + p.extension().string())).string();
+        return (p.parent_path() / (p.stem().string() + "_" + c.name + p.extension().string()))
+            .string();
     }
     return fs::path(o.config).stem().string() + "_" + c.name + ".exr";
 }
@@ -61,16 +61,17 @@ void write_ndf_comparison(const std::string& exr, const std::string& csv, const 
     write_channels_exr(exr, size, size, {"measured", "target"}, {measured, target}, a);
 
     std::ofstream out(csv);
-    out << "# D(m) cos(theta_m) averaged over rings of " << m.ndf_bins
-        << " equal-area cells; ndf " << ndf << "\n";
+    out << "# D(m) cos(theta_m) averaged over rings of " << m.ndf_bins << " equal-area cells; ndf "
+        << ndf << "\n";
     out << "theta_min_deg,theta_max_deg,measured,target\n";
     for (int r = 0; r < sensor.ring_count(); ++r) {
         double mm = 0, tm = 0, omega = 0;
-        for (int c = sensor.ring_first_cell(r); c < sensor.ring_first_cell(r) + sensor.ring_cell_count(r); ++c)
+        for (int c = sensor.ring_first_cell(r);
+             c < sensor.ring_first_cell(r) + sensor.ring_cell_count(r); ++c)
             mm += m.measured_mass[c], tm += m.target_mass[c], omega += sensor.cell(c).solid_angle;
         const SensorCell& first = sensor.cell(sensor.ring_first_cell(r));
-        out << degrees(first.theta_min) << "," << degrees(first.theta_max) << "," << mm / omega << ","
-            << tm / omega << "\n";
+        out << degrees(first.theta_min) << "," << degrees(first.theta_max) << "," << mm / omega
+            << "," << tm / omega << "\n";
     }
     if (!out) throw std::runtime_error(csv + ": cannot write");
 }
@@ -81,7 +82,8 @@ int run_surface_command(const SurfaceOptions& o) {
     const Config cfg = load_config(o.config, o.overrides); // throws ConfigError
     std::unique_ptr<tbb::global_control> limit;
     if (o.threads > 0)
-        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                      o.threads);
     const int threads = o.threads > 0 ? o.threads : int(std::thread::hardware_concurrency());
     // Refuse to replace outputs before any work.
     for (const CaseConfig& c : cfg.cases) {
@@ -90,14 +92,18 @@ int run_surface_command(const SurfaceOptions& o) {
             if (!o.overwrite && fs::exists(f))
                 throw std::runtime_error(f + ": exists; pass --overwrite to replace it");
     }
-    const SurfaceCache cache(o.no_cache ? std::string() : (o.cache_dir.empty() ? default_cache_directory() : o.cache_dir));
+    const SurfaceCache cache(o.no_cache
+                                 ? std::string()
+                                 : (o.cache_dir.empty() ? default_cache_directory() : o.cache_dir));
     for (const CaseConfig& c : cfg.cases) {
         const auto ndf = make_ndf(c.ndf);
         Progress progress(c.surface.iterations, o.quiet);
         SurfaceOrigin origin;
-        const HeightField surface = obtain_surface(
-            *ndf, c.surface, cache, threads, origin,
-            [&](int done, int total) { progress.update(done, c.name + " iteration " + std::to_string(done) + "/" + std::to_string(total)); });
+        const HeightField surface =
+            obtain_surface(*ndf, c.surface, cache, threads, origin, [&](int done, int total) {
+                progress.update(done, c.name + " iteration " + std::to_string(done) + "/" +
+                                          std::to_string(total));
+            });
         progress.finish();
         const SurfaceMetrics m = measure_surface(surface, *ndf);
         const std::string out = output_for(o, cfg, c);
@@ -118,37 +124,47 @@ int run_surface_command(const SurfaceOptions& o) {
         attrs.numbers["gonio_correlation_length_x"] = m.correlation_length_x;
         attrs.numbers["gonio_correlation_length_y"] = m.correlation_length_y;
         std::string histogram;
-        for (double v : m.height_histogram) histogram += (histogram.empty() ? "" : ",") + std::to_string(v);
+        for (double v : m.height_histogram)
+            histogram += (histogram.empty() ? "" : ",") + std::to_string(v);
         attrs.text["gonio_height_histogram"] = histogram;
         attrs.numbers["gonio_height_min"] = m.height_min;
         attrs.numbers["gonio_height_max"] = m.height_max;
         write_height_exr(out, surface, attrs);
-        write_ndf_comparison(sibling(out, "_ndf.exr"), sibling(out, "_ndf.csv"), m, ndf->describe());
-        if (!origin.warning.empty()) std::fprintf(stderr, "gonio: warning: %s\n", origin.warning.c_str());
+        write_ndf_comparison(sibling(out, "_ndf.exr"), sibling(out, "_ndf.csv"), m,
+                             ndf->describe());
+        if (!origin.warning.empty())
+            std::fprintf(stderr, "gonio: warning: %s\n", origin.warning.c_str());
         if (o.quiet) continue;
-        std::printf("case %s: %s, %d^2 samples, spacing %g\n", c.name.c_str(), ndf->describe().c_str(),
-                    surface.n, surface.spacing);
+        std::printf("case %s: %s, %d^2 samples, spacing %g\n", c.name.c_str(),
+                    ndf->describe().c_str(), surface.n, surface.spacing);
         if (origin.loaded)
             std::printf("  loaded %s (edges %s)\n", c.surface.input.c_str(), origin.edges.c_str());
         else if (origin.from_cache)
             std::printf("  reused cached surface %s (generated with %s, %d iterations)\n",
-                        origin.cache_path.c_str(), c.surface.generator.c_str(), origin.log.iterations);
+                        origin.cache_path.c_str(), c.surface.generator.c_str(),
+                        origin.log.iterations);
         else
             std::printf("  generated with %s in %.2f s (FFTs alone %.2f s), %d iterations%s%s\n",
                         c.surface.generator.c_str(), origin.log.seconds, origin.log.fft_seconds,
-                        origin.log.iterations, origin.log.converged_early ? " (stopped: converged)" : "",
+                        origin.log.iterations,
+                        origin.log.converged_early ? " (stopped: converged)" : "",
                         cache.enabled() ? ("; cached as " + origin.cache_path).c_str() : "");
         if (!origin.log.schwarz_mean.empty())
-            std::printf("  Schwarz error (mean, R19 Eq. 19): %.4f -> %.4f; cells above %.3g: %.1f%% -> %.1f%%\n",
-                        origin.log.schwarz_mean.front(), origin.log.schwarz_mean.back(), c.surface.threshold,
-                        100 * origin.log.above_threshold.front(), 100 * origin.log.above_threshold.back());
+            std::printf("  Schwarz error (mean, R19 Eq. 19): %.4f -> %.4f; cells above %.3g: "
+                        "%.1f%% -> %.1f%%\n",
+                        origin.log.schwarz_mean.front(), origin.log.schwarz_mean.back(),
+                        c.surface.threshold, 100 * origin.log.above_threshold.front(),
+                        100 * origin.log.above_threshold.back());
         std::printf("  facet NDF vs target: total-variation distance %.4f on %d equal-area cells\n",
                     m.ndf_distance, m.ndf_bins);
-        std::printf("  effective alpha (median slope) x %.4f y %.4f; sqrt(2) RMS slope x %.4f y %.4f",
-                    m.alpha_eff_x, m.alpha_eff_y, m.alpha_rms_x, m.alpha_rms_y);
-        if (m.target_alpha_x > 0) std::printf("; target %.4f %.4f", m.target_alpha_x, m.target_alpha_y);
+        std::printf(
+            "  effective alpha (median slope) x %.4f y %.4f; sqrt(2) RMS slope x %.4f y %.4f",
+            m.alpha_eff_x, m.alpha_eff_y, m.alpha_rms_x, m.alpha_rms_y);
+        if (m.target_alpha_x > 0)
+            std::printf("; target %.4f %.4f", m.target_alpha_x, m.target_alpha_y);
         std::printf("\n  heights: RMS %.4g, range [%.4g, %.4g], correlation length x %.3g y %.3g\n",
-                    m.height_rms, m.height_min, m.height_max, m.correlation_length_x, m.correlation_length_y);
+                    m.height_rms, m.height_min, m.height_max, m.correlation_length_x,
+                    m.correlation_length_y);
         std::printf("  wrote %s, %s, %s\n", out.c_str(), sibling(out, "_ndf.exr").c_str(),
                     sibling(out, "_ndf.csv").c_str());
     }

@@ -19,7 +19,9 @@ namespace {
 // Every key a section may hold; anything else is reported as unknown.
 const std::map<std::string, std::vector<std::string>>& schema() {
     static const std::map<std::string, std::vector<std::string>> s = {
-        {"", {"seed", "name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface", "case"}},
+        {"",
+         {"seed", "name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface",
+          "case"}},
         {"case", {"name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface"}},
         {"ndf", {"type", "alpha", "alpha_x", "alpha_y"}},
         {"material", {"type", "eta", "ior", "n", "k", "f0"}},
@@ -27,9 +29,9 @@ const std::map<std::string, std::vector<std::string>>& schema() {
         {"beam", {"theta_i", "phi_i"}},
         {"sensor", {"cells"}},
         {"model", {"masking", "quadrature", "tolerance"}},
-        {"surface", {"generator", "constraint", "size", "spacing", "iterations", "threshold",
-                     "stop_when_converged", "lattice", "relief", "correlation_length", "input",
-                     "edges"}},
+        {"surface",
+         {"generator", "constraint", "size", "spacing", "iterations", "threshold",
+          "stop_when_converged", "lattice", "relief", "correlation_length", "input", "edges"}},
     };
     return s;
 }
@@ -196,13 +198,15 @@ class Loader {
             s.generator = "input";
             return;
         }
-        s.generator = r.string("generator", {"sliced-matching", "algorithm1", "heitz"}, "sliced-matching");
+        s.generator =
+            r.string("generator", {"sliced-matching", "algorithm1", "heitz"}, "sliced-matching");
         s.size = static_cast<int>(r.integer("size", {8, 16384}, 256));
         s.spacing = r.number("spacing", {1e-9, 1e9, true, false}, 1.0);
         if (s.generator == "heitz") {
             if (c.ndf.type != "beckmann")
-                r.fail("generator", "\"heitz\" makes Beckmann surfaces only; this case's ndf.type is \"" +
-                                        c.ndf.type + "\"");
+                r.fail("generator",
+                       "\"heitz\" makes Beckmann surfaces only; this case's ndf.type is \"" +
+                           c.ndf.type + "\"");
             s.correlation_length = r.number("correlation_length", {0.5, 1e6}, 8.0);
             return;
         }
