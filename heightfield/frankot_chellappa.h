@@ -46,6 +46,7 @@ class FrankotChellappa {
     fftwf_plan forward_p_ = nullptr, forward_q_ = nullptr, backward_ = nullptr;
     std::vector<float> weight_re_, weight_im_; // conj(a)/(|a|^2+|b|^2) per frequency (x part)
     std::vector<float> dx_re_, dx_im_, dy_re_, dy_im_;
+    std::vector<float> inv_denom_; // scale / (|a|^2 + |b|^2) per frequency, 0 at (0, 0)
 };
 
 // Calls fftwf_init_threads once; safe to call repeatedly.

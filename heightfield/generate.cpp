@@ -197,12 +197,13 @@ void sliced_step(const float* h, int n, double ax, double ay, double psi, const 
             for (int y = n * c / chunks; y < n * (c + 1) / chunks; ++y) {
                 const float* row = &h[size_t(y) * n];
                 const float* next = &h[size_t((y + 1) % n) * n];
-                for (int x = 0; x < n; ++x) {
-                    const float h0 = row[x];
-                    const float v = (row[x + 1 < n ? x + 1 : 0] - h0) * ex + (next[x] - h0) * ey;
+                auto bin = [&](float v) {
                     blo = std::min(blo, v), bhi = std::max(bhi, v);
                     ++hist[std::clamp(int((v - lo) * inv_width), 0, bins - 1)];
-                }
+                };
+                for (int x = 0; x + 1 < n; ++x)
+                    bin((row[x + 1] - row[x]) * ex + (next[x] - row[x]) * ey);
+                bin((row[0] - row[n - 1]) * ex + (next[n - 1] - row[n - 1]) * ey); // wraps
             }
             block_lo[c] = blo, block_hi[c] = bhi;
         });
@@ -241,9 +242,7 @@ void sliced_step(const float* h, int n, double ax, double ay, double psi, const 
             const float* next = &h[size_t((y + 1) % n) * n];
             float* po = &p[size_t(y) * n];
             float* qo = &q[size_t(y) * n];
-            for (int x = 0; x < n; ++x) {
-                const float h0 = row[x];
-                const float gx = row[x + 1 < n ? x + 1 : 0] - h0, gy = next[x] - h0;
+            auto move = [&](int x, float gx, float gy) {
                 const float v = gx * ex + gy * ey;
                 const float t = (v - range.lo) * inv_width;
                 const int b = std::min(bins - 1, int(t));
@@ -251,7 +250,9 @@ void sliced_step(const float* h, int n, double ax, double ay, double psi, const 
                 const float d = map[b] + frac * (map[b + 1] - map[b]) - v;
                 po[x] = gx + dx * d;
                 qo[x] = gy + dy * d;
-            }
+            };
+            for (int x = 0; x + 1 < n; ++x) move(x, row[x + 1] - row[x], next[x] - row[x]);
+            move(n - 1, row[0] - row[n - 1], next[n - 1] - row[n - 1]); // wraps
         }
     });
 }
