@@ -390,6 +390,11 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
             for (int y = 0; y < n; ++y)
                 for (int x = 0; x < n; ++x)
                     if (schwarz_error(p, q, n, x, y) > spec.threshold) bad.push_back(y * n + x);
+            // Greedy matching in row-major order would leave the last rows the worst leftovers
+            // (a visible band at the wrap); a seeded random order spreads them evenly.
+            Rng order{spec.seed, 0x6f72646572ull /* "order" */, std::uint64_t(it)};
+            for (size_t k = bad.size(); k > 1; --k)
+                std::swap(bad[k - 1], bad[size_t(order.uniform() * double(k))]);
             std::vector<int> free_ids;
             free_ids.reserve(bad.size());
             for (int c : bad) free_ids.push_back(assigned[c]);
