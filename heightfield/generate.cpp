@@ -178,6 +178,26 @@ class Quantiles {
     std::vector<float> all_, table_;
 };
 
+// One row of the sliced step's move: the gradient (forward differences of h) moves along e to the
+// image of its projection under the piecewise-linear map. A plain loop that compilers vectorise;
+// an AVX2 clone is chosen at run time where the processor has it (the result is the same).
+__attribute__((target_clones("avx2", "default"))) void
+move_row(const float* __restrict row, const float* __restrict next, int n, float ex, float ey,
+         float lo, float inv_width, int bins, const float* __restrict map, float dx, float dy,
+         float* __restrict po, float* __restrict qo) {
+    auto move = [&](int x, float gx, float gy) {
+        const float v = gx * ex + gy * ey;
+        const float t = (v - lo) * inv_width;
+        const int b = std::min(bins - 1, int(t));
+        const float frac = std::min(1.0f, t - float(b));
+        const float d = map[b] + frac * (map[b + 1] - map[b]) - v;
+        po[x] = gx + dx * d;
+        qo[x] = gy + dy * d;
+    };
+    for (int x = 0; x < n - 1; ++x) move(x, row[x + 1] - row[x], next[x] - row[x]);
+    move(n - 1, row[0] - row[n - 1], next[n - 1] - row[n - 1]); // wraps
+}
+
 void sliced_step(const float* h, int n, double ax, double ay, double psi, const Quantiles& quantile,
                  SlicedWork& w, float* p, float* q) {
     const size_t cells = size_t(n) * n;
@@ -236,24 +256,9 @@ void sliced_step(const float* h, int n, double ax, double ay, double psi, const 
     // Pass 2: each gradient moves along e to its projection's image under the map.
     const float dx = float(std::cos(psi) * ax), dy = float(std::sin(psi) * ay);
     tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& rows) {
-        const float* map = w.map.data();
-        for (int y = rows.begin(); y < rows.end(); ++y) {
-            const float* row = &h[size_t(y) * n];
-            const float* next = &h[size_t((y + 1) % n) * n];
-            float* po = &p[size_t(y) * n];
-            float* qo = &q[size_t(y) * n];
-            auto move = [&](int x, float gx, float gy) {
-                const float v = gx * ex + gy * ey;
-                const float t = (v - range.lo) * inv_width;
-                const int b = std::min(bins - 1, int(t));
-                const float frac = std::min(1.0f, t - float(b));
-                const float d = map[b] + frac * (map[b + 1] - map[b]) - v;
-                po[x] = gx + dx * d;
-                qo[x] = gy + dy * d;
-            };
-            for (int x = 0; x + 1 < n; ++x) move(x, row[x + 1] - row[x], next[x] - row[x]);
-            move(n - 1, row[0] - row[n - 1], next[n - 1] - row[n - 1]); // wraps
-        }
+        for (int y = rows.begin(); y < rows.end(); ++y)
+            move_row(&h[size_t(y) * n], &h[size_t((y + 1) % n) * n], n, ex, ey, range.lo, inv_width,
+                     bins, w.map.data(), dx, dy, &p[size_t(y) * n], &q[size_t(y) * n]);
     });
 }
 
