@@ -7,6 +7,7 @@
 #include "heightfield/surface_metrics.h"
 #include "heightfield/surface_source.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <doctest/doctest.h>
@@ -248,4 +249,22 @@ TEST_CASE("a non-periodic measured map is detected and can be made periodic by m
     CHECK(origin.edges.find("mirror") == 0);
     CHECK(loaded.n == 64);
     fs::remove_all(dir);
+}
+
+TEST_CASE("generation can stop when the NDF distance stops improving") {
+    const Beckmann beckmann(0.5);
+    SurfaceSpec s;
+    s.size = 64;
+    s.iterations = 2000;
+    s.stop_when_converged = true;
+    GenerationLog log;
+    generate_surface(beckmann, s, 2, &log);
+    CHECK(log.converged_early);
+    CHECK(log.iterations < 2000);
+    CHECK(log.iterations % 10 == 0);
+    REQUIRE(log.ndf_distance.size() >= 4);
+    // Stopped after three checks without a 0.1 % improvement on the best distance.
+    const double best = *std::min_element(log.ndf_distance.begin(), log.ndf_distance.end() - 3);
+    for (size_t k = log.ndf_distance.size() - 3; k < log.ndf_distance.size(); ++k)
+        CHECK(log.ndf_distance[k] >= best * (1 - 1e-3));
 }
