@@ -145,7 +145,7 @@ class SlopeGrid {
 // gradient of the integrated surface along e so that the projections g.e take the target's 1-D
 // marginal, matched by rank (the k-th smallest projection gets the k-th quantile). Over the
 // directions this transports the whole 2-D distribution, radius and angle together. Ranks come
-// from a fine histogram (2^16 bins, linear inside a bin): O(N), in two parallel passes.
+// from a fine histogram (2^12 bins, linear inside a bin): O(N), in two parallel passes.
 struct SlicedWork {
     std::vector<std::uint32_t> in_bin;
     std::vector<std::vector<std::uint32_t>> part;
@@ -238,9 +238,6 @@ void sliced_step(const float* h, int n, double ax, double ay, double psi, const 
     }
     const float margin = 0.05f * (actual_hi - actual_lo);
     w.lo = actual_lo - margin, w.hi = actual_hi + margin;
-    struct Range {
-        float lo, hi;
-    } const range{lo, hi};
     // The transport map at the bin edges: the target quantile of each edge's rank. Inside a bin
     // values are taken as evenly spread, so the map is linear there.
     w.in_bin.assign(bins, 0);
@@ -257,7 +254,7 @@ void sliced_step(const float* h, int n, double ax, double ay, double psi, const 
     const float dx = float(std::cos(psi) * ax), dy = float(std::sin(psi) * ay);
     tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
-            move_row(&h[size_t(y) * n], &h[size_t((y + 1) % n) * n], n, ex, ey, range.lo, inv_width,
+            move_row(&h[size_t(y) * n], &h[size_t((y + 1) % n) * n], n, ex, ey, lo, inv_width,
                      bins, w.map.data(), dx, dy, &p[size_t(y) * n], &q[size_t(y) * n]);
     });
 }

@@ -15,8 +15,9 @@ std::string surface_identity(const Ndf& ndf, const SurfaceSpec& s) {
     o << "gonio-surface v2|" << ndf.describe() << "|generator=" << s.generator << "|size=" << s.size
       << "|spacing=" << s.spacing << "|iterations=" << s.iterations << "|threshold=" << s.threshold
       << "|stop_when_converged=" << s.stop_when_converged << "|seed=" << s.seed;
-    if (s.generator == "domes" || s.generator == "holes")
-        o << "|lattice=" << s.lattice << "|relief=" << s.relief;
+    if (s.generator == "heitz") o << "|correlation_length=" << s.correlation_length;
+    o << "|constraint=" << s.constraint;
+    if (s.constraint != "none") o << "|lattice=" << s.lattice << "|relief=" << s.relief;
     return o.str();
 }
 

@@ -268,3 +268,39 @@ TEST_CASE("generation can stop when the NDF distance stops improving") {
     for (size_t k = log.ndf_distance.size() - 3; k < log.ndf_distance.size(); ++k)
         CHECK(log.ndf_distance[k] >= best * (1 - 1e-3));
 }
+
+TEST_CASE("the cache key covers every parameter that defines a surface") {
+    const Beckmann b(0.5);
+    SurfaceSpec base;
+    const std::string k0 = surface_cache_key(b, base);
+    auto differs = [&](SurfaceSpec s) { return surface_cache_key(b, s) != k0; };
+    SurfaceSpec s = base;
+    s.size = 128;
+    CHECK(differs(s));
+    s = base, s.spacing = 2;
+    CHECK(differs(s));
+    s = base, s.iterations = 499;
+    CHECK(differs(s));
+    s = base, s.threshold = 0.03;
+    CHECK(differs(s));
+    s = base, s.seed = 2;
+    CHECK(differs(s));
+    s = base, s.generator = "algorithm1";
+    CHECK(differs(s));
+    s = base, s.constraint = "domes";
+    CHECK(differs(s));
+    s = base, s.stop_when_converged = true;
+    CHECK(differs(s));
+    SurfaceSpec d = base;
+    d.constraint = "domes";
+    const std::string kd = surface_cache_key(b, d);
+    d.lattice = 4;
+    CHECK(surface_cache_key(b, d) != kd);
+    SurfaceSpec h = base;
+    h.generator = "heitz";
+    const std::string kh = surface_cache_key(b, h);
+    h.correlation_length = 4;
+    CHECK(surface_cache_key(b, h) != kh);
+    CHECK(surface_cache_key(Beckmann(0.51), base) != k0);
+    CHECK(surface_cache_key(Ggx(0.5), base) != k0);
+}
