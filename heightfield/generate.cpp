@@ -254,8 +254,8 @@ void sliced_step(const float* h, int n, double ax, double ay, double psi, const 
     const float dx = float(std::cos(psi) * ax), dy = float(std::sin(psi) * ay);
     tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
-            move_row(&h[size_t(y) * n], &h[size_t((y + 1) % n) * n], n, ex, ey, lo, inv_width,
-                     bins, w.map.data(), dx, dy, &p[size_t(y) * n], &q[size_t(y) * n]);
+            move_row(&h[size_t(y) * n], &h[size_t((y + 1) % n) * n], n, ex, ey, lo, inv_width, bins,
+                     w.map.data(), dx, dy, &p[size_t(y) * n], &q[size_t(y) * n]);
     });
 }
 

@@ -9,6 +9,7 @@
 // m = (-p, -q, 1) / |(-p, -q, 1)|, and both triangles of a cell have the same projected area.
 #include "core/math.h"
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -35,6 +36,26 @@ struct HeightField {
             sp = p(x, y + 1), sq = q(x + 1, y);
     }
     static Vec3 normal_of_slopes(double sp, double sq) { return normalize(Vec3{-sp, -sq, 1.0}); }
+
+    // The triangulated surface at (x, y) in world units (any x, y: the patch repeats): its height
+    // and the slopes of the triangle there, with the same split as the traced geometry.
+    double height_at(double x, double y, double* sp = nullptr, double* sq = nullptr) const {
+        const double gx = x / spacing, gy = y / spacing;
+        const double fx = std::floor(gx), fy = std::floor(gy);
+        const int cx = int(fx), cy = int(fy);
+        const double u = gx - fx, v = gy - fy;
+        double a, b, h;
+        if (u + v <= 1.0) { // triangle A: (x, y), (x+1, y), (x, y+1)
+            a = p(cx, cy), b = q(cx, cy);
+            h = at(cx, cy) + (u * a + v * b) * spacing;
+        } else { // triangle B: (x+1, y+1), (x, y+1), (x+1, y)
+            a = p(cx, cy + 1), b = q(cx + 1, cy);
+            h = at(cx + 1, cy + 1) - ((1 - u) * a + (1 - v) * b) * spacing;
+        }
+        if (sp) *sp = a;
+        if (sq) *sq = b;
+        return h;
+    }
 };
 
 } // namespace gonio

@@ -1,0 +1,153 @@
+#include "gonio/trace/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace gonio {
+
+namespace {
+// Embree calls this from C code: record the first error (no exception may cross C frames);
+// the constructor checks it after building.
+void embree_error(void* user, RTCError code, const char* message) {
+    auto* first = static_cast<std::string*>(user);
+    if (first->empty())
+        *first = "Embree error " + std::to_string(int(code)) + ": " + (message ? message : "?");
+}
+} // namespace
+
+Scene::Scene(const HeightField& s) : surface_(s) {
+    if (s.n < 2 || s.n > 32766)
+        throw std::invalid_argument("Scene: grid size must be in [2, 32766]");
+    device_ = rtcNewDevice(nullptr);
+    if (!device_) throw std::runtime_error("Embree: cannot create a device");
+    rtcSetDeviceErrorFunction(device_, embree_error, &error_);
+    scene_ = rtcNewScene(device_);
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+
+    const int n = s.n, v = n + 1;
+    period_ = n * s.spacing;
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_GRID);
+    float* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), size_t(v) * v));
+    z_min_ = std::numeric_limits<double>::max(), z_max_ = -z_min_;
+    for (int y = 0; y < v; ++y)
+        for (int x = 0; x < v; ++x) {
+            const float h = s.at(x, y); // wraps: the last row and column repeat the first
+            float* p = vertices + 3 * (size_t(y) * v + x);
+            p[0] = float(x * s.spacing), p[1] = float(y * s.spacing), p[2] = h;
+            z_min_ = std::min(z_min_, double(h)), z_max_ = std::max(z_max_, double(h));
+        }
+    RTCGrid* grid = static_cast<RTCGrid*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(RTCGrid), 1));
+    grid->startVertexID = 0;
+    grid->stride = unsigned(v);
+    grid->width = static_cast<unsigned short>(v);
+    grid->height = static_cast<unsigned short>(v);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene_, geom);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(scene_);
+    if (!error_.empty()) {
+        rtcReleaseScene(scene_);
+        rtcReleaseDevice(device_);
+        throw std::runtime_error(error_);
+    }
+    // One float ulp at the largest coordinate: enough to leave the facet (Embree's ROBUST
+    // intersection is watertight), small enough not to cross a neighbouring facet at a sharp
+    // concave edge. Measured on Beckmann alpha = 1 (256^2, 10^6 rays): 64 ulps lose 1.4e-5 of the
+    // rays through such edges, 16 ulps 5.7e-6, 4 ulps 1.9e-6, 1 ulp none, with no self-re-hits.
+    const double extent = std::max({period_, std::abs(z_min_), std::abs(z_max_)});
+    epsilon_ = extent * std::numeric_limits<float>::epsilon();
+}
+
+Scene::~Scene() {
+    if (scene_) rtcReleaseScene(scene_);
+    if (device_) rtcReleaseDevice(device_);
+}
+
+float Scene::intersect(const Vec3& o, const Vec3& d, float tfar) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh{};
+    rh.ray.org_x = float(o.x), rh.ray.org_y = float(o.y), rh.ray.org_z = float(o.z);
+    rh.ray.dir_x = float(d.x), rh.ray.dir_y = float(d.y), rh.ray.dir_z = float(d.z);
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = tfar;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &rh);
+    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<float>::infinity()
+                                                    : rh.ray.tfar;
+}
+
+SurfaceHit Scene::trace(Vec3 o, const Vec3& d, int max_wraps) const {
+    SurfaceHit r;
+    // Embree sees the origin in float. Near a sharp concave edge the rounding of x and y (times
+    // the slope) can put it below the neighbouring facet: then lift it onto the surface.
+    const double fx = float(o.x), fy = float(o.y);
+    const double below = surface_.height_at(fx, fy) + epsilon_ - double(float(o.z));
+    if (below > 0 && o.z < z_max_) {
+        o.z += below;
+        r.lifted = true;
+    }
+    const double top = z_max_ + epsilon_, bottom = z_min_ - epsilon_;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    for (r.wraps = 0; r.wraps <= max_wraps;) {
+        // Distances to the walls of the box along d.
+        const double inf = std::numeric_limits<double>::infinity();
+        const double tx = d.x > 0 ? (period_ - o.x) / d.x : d.x < 0 ? -o.x / d.x : inf;
+        const double ty = d.y > 0 ? (period_ - o.y) / d.y : d.y < 0 ? -o.y / d.y : inf;
+        const double tz = d.z > 0 ? (top - o.z) / d.z : d.z < 0 ? (bottom - o.z) / d.z : inf;
+        const double t_wall = std::max(0.0, std::min({tx, ty, tz}));
+        RTCRayHit rh{};
+        rh.ray.org_x = float(o.x), rh.ray.org_y = float(o.y), rh.ray.org_z = float(o.z);
+        rh.ray.dir_x = float(d.x), rh.ray.dir_y = float(d.y), rh.ray.dir_z = float(d.z);
+        rh.ray.tnear = 0.0f;
+        // A little past the wall, so that a facet at the wall is not missed; a hit beyond the
+        // wall is outside the patch and is found again after the wrap.
+        rh.ray.tfar = float(t_wall + epsilon_);
+        rh.ray.mask = 0xFFFFFFFFu;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene_, &context, &rh);
+        if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID && rh.ray.tfar <= t_wall + epsilon_) {
+            Vec3 ng{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
+            ng = normalize(ng);
+            const Vec3 up = ng.z < 0 ? -ng : ng; // a height field's facets face up
+            Vec3 at = o + double(rh.ray.tfar) * d;
+            if (dot(d, up) > 0) {
+                // From free space a ray meets a height field from above only. A facet met from
+                // below means the origin, rounded to float near a concave edge, lay an ulp inside
+                // the solid: the ray leaves it here and goes on unchanged.
+                o = at + epsilon_ * up;
+                ++r.reentries;
+                if (r.reentries > 64) break; // not a rounding artefact: report the ray as lost
+                continue;
+            }
+            r.kind = SurfaceHit::hit;
+            r.normal = up;
+            // Keep the position in the patch for the next segment.
+            at.x -= period_ * std::floor(at.x / period_);
+            at.y -= period_ * std::floor(at.y / period_);
+            r.position = at;
+            return r;
+        }
+        if (tz <= tx && tz <= ty) {
+            r.kind = d.z > 0 ? SurfaceHit::escaped_up : SurfaceHit::escaped_down;
+            return r;
+        }
+        // Through a side wall: re-enter through the opposite one.
+        o = o + t_wall * d;
+        if (tx <= ty) o.x = d.x > 0 ? 0.0 : period_;
+        if (ty <= tx) o.y = d.y > 0 ? 0.0 : period_;
+        ++r.wraps;
+    }
+    r.kind = SurfaceHit::lost;
+    return r;
+}
+
+} // namespace gonio

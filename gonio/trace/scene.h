@@ -1,0 +1,57 @@
+#pragma once
+// A height field in Embree 3 as one grid geometry ((n+1)^2 vertices, the last row and column
+// repeating the first, so the patch is periodic), with the ROBUST scene flag and an error
+// callback. A grid is an order of magnitude smaller and faster to build than a triangle mesh.
+// Embree splits every grid cell like a quad, into (v0, v1, v3) and (v2, v3, v1): the two
+// triangles of heightfield.h.
+//
+// trace() follows a ray across the periodic patch: each segment's far distance is clipped to the
+// walls of the box [0, L]^2 x [zmin, zmax]; a ray that leaves through a side wall re-enters
+// through the opposite one, and it leaves for good only through the top (or the bottom) plane.
+#include "core/math.h"
+#include "heightfield/heightfield.h"
+
+#include <embree3/rtcore.h>
+#include <string>
+
+namespace gonio {
+
+struct SurfaceHit {
+    enum Kind { hit, escaped_up, escaped_down, lost } kind = lost;
+    Vec3 position;       // on the surface, in the patch [0, L)^2 (hit only)
+    Vec3 normal;         // the facet's unit normal, facing +z (hit only)
+    int wraps = 0;       // side walls crossed
+    int reentries = 0;   // facets met from below and passed (rounding at concave edges)
+    bool lifted = false; // the origin, as Embree sees it in float, lay below the surface
+};
+
+class Scene {
+  public:
+    explicit Scene(const HeightField& surface);
+    ~Scene();
+    Scene(const Scene&) = delete;
+    Scene& operator=(const Scene&) = delete;
+
+    double period() const { return period_; } // L = n * spacing
+    double z_min() const { return z_min_; }
+    double z_max() const { return z_max_; }
+    // Scale of the coordinates, for offsetting ray origins off the surface.
+    double epsilon() const { return epsilon_; }
+
+    // Follows the ray from `origin` (inside the box or on its top plane) along unit `dir` to the
+    // first facet it hits, wrapping through the side walls, or to where it leaves the box.
+    // max_wraps bounds near-horizontal rays (kind = lost when exceeded).
+    SurfaceHit trace(Vec3 origin, const Vec3& dir, int max_wraps = 1 << 20) const;
+
+    // One bare rtcIntersect1 call (for the benchmark): the hit distance, or infinity.
+    float intersect(const Vec3& origin, const Vec3& dir, float tfar) const;
+
+  private:
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+    double period_ = 0, z_min_ = 0, z_max_ = 0, epsilon_ = 0;
+    std::string error_;   // first error reported by Embree's callback
+    HeightField surface_; // the exact triangulated surface, to keep ray origins outside it
+};
+
+} // namespace gonio
