@@ -48,6 +48,26 @@ int main(int argc, char** argv) {
     surface_cmd->add_option("--threads", surface.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(0, 1024));
 
+    gonio::RunOptions run;
+    run.command_line = command_line;
+    CLI::App* run_cmd = app.add_subcommand(
+        "run",
+        "Trace every case and incidence on the explicit microsurface; compare with Model L1");
+    run_cmd->add_option("config", run.config, "TOML config file")->required();
+    run_cmd->add_option("-o,--output", run.output, "HDF5 result file (default: <config>.h5)");
+    run_cmd->add_option("--set", run.overrides, "Override a config key (repeatable)");
+    run_cmd->add_flag("--overwrite", run.overwrite, "Replace an existing output file");
+    run_cmd->add_flag("-q,--quiet", run.quiet, "No progress and no table");
+    run_cmd->add_flag("--no-cache", run.no_cache, "Neither read nor write the surface cache");
+    run_cmd->add_option("--cache-dir", run.cache_dir, "Surface cache directory");
+    run_cmd->add_option("--threads", run.threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(0, 1024));
+
+    std::string compare_path;
+    CLI::App* compare_cmd =
+        app.add_subcommand("compare", "Print the Model-vs-simulated table of a result file");
+    compare_cmd->add_option("file", compare_path, "HDF5 result file")->required();
+
     std::string info_path;
     bool info_json = false;
     CLI::App* info_cmd = app.add_subcommand("info", "Summarise a result file");
@@ -63,6 +83,8 @@ int main(int argc, char** argv) {
     try {
         if (*model_cmd) return gonio::run_model_command(model);
         if (*surface_cmd) return gonio::run_surface_command(surface);
+        if (*run_cmd) return gonio::run_run_command(run);
+        if (*compare_cmd) return gonio::run_compare_command(compare_path);
         if (*info_cmd) return gonio::run_info_command(info_path, info_json);
     } catch (const gonio::ConfigError& e) {
         std::fprintf(stderr, "gonio: error: %s\n", e.what());

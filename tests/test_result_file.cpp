@@ -278,3 +278,48 @@ TEST_CASE("gonio surface writes the height map and NDF comparison, then reuses t
     CHECK(!fs::exists(d / "x.exr"));
     fs::remove_all(d);
 }
+
+TEST_CASE("gonio run traces, compares with the model, and writes the simulation") {
+    const fs::path d = fresh_dir("run");
+    write(d / "r.toml", "[ndf]\ntype = \"beckmann\"\nalpha = 0.5\n[beam]\ntheta_i = [0, 60]\n"
+                        "[sensor]\ncells = 145\n[surface]\nsize = 64\niterations = 20\n"
+                        "[trace]\nrays = 20000\norders = 3\n");
+    const Run r = run_gonio(d, "run r.toml -o out.h5 --cache-dir cache");
+    CHECK(r.code == 0);
+    CHECK(r.out.find("model_L1") != std::string::npos);
+    const ResultSummary s = read_result_summary((d / "out.h5").string());
+    REQUIRE(s.cases.size() == 1);
+    for (const char* k : {"l1_albedo", "l2_albedo", "l2plus_albedo", "linf_albedo",
+                          "model_l1_albedo", "ledger_absorbed", "ledger_capped", "ledger_lost",
+                          "ledger_unaccounted", "l1_relative_difference", "l1_distance"}) {
+        CAPTURE(k);
+        REQUIRE(s.cases[0].albedos.count(k) == 1);
+    }
+    for (size_t i = 0; i < 2; ++i) { // a perfect mirror: everything is reflected
+        CHECK(s.cases[0].albedos.at("linf_albedo")[i] == doctest::Approx(1.0).epsilon(1e-9));
+        CHECK(s.cases[0].albedos.at("ledger_lost")[i] == 0.0);
+    }
+    {
+        h5::silence_errors();
+        h5::Handle f(H5Fopen((d / "out.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+                     H5Fclose, "open");
+        h5::Handle g(H5Gopen2(f, "r", H5P_DEFAULT), H5Gclose, "group");
+        std::vector<hsize_t> dims;
+        h5::read_doubles(g, "brdf", &dims);
+        CHECK(dims ==
+              std::vector<hsize_t>{2, 1, 4, 145, 1}); // theta_i, phi_i, order, cell, channel
+    }
+    const Run cmp = run_gonio(d, "compare out.h5");
+    CHECK(cmp.code == 0);
+    CHECK(cmp.out.find("sim_L1") != std::string::npos);
+    // Clean failures before any tracing: an untraceable material, an unwritable output.
+    const Run diel =
+        run_gonio(d, "run r.toml -o x.h5 --set material.type=dielectric --set material.eta=1.5");
+    CHECK(diel.code == 2);
+    CHECK(diel.err.find("\"dielectric\" cannot be traced yet") != std::string::npos);
+    const Run unwritable = run_gonio(d, "run r.toml -o /nonexistent/dir/x.h5 --cache-dir cache");
+    CHECK(unwritable.code == 1);
+    CHECK(unwritable.err.find("/nonexistent/dir/x.h5") != std::string::npos);
+    CHECK(!fs::exists(d / "x.h5"));
+    fs::remove_all(d);
+}

@@ -30,6 +30,23 @@ struct SurfaceOptions {
 // `gonio surface`: the microsurface of every case (cached), its EXR height map and NDF comparison.
 int run_surface_command(const SurfaceOptions& options);
 
+struct RunOptions {
+    std::string config;
+    std::string output; // default: <config stem>.h5
+    std::vector<std::string> overrides;
+    bool overwrite = false;
+    bool quiet = false;
+    bool no_cache = false;
+    std::string cache_dir;
+    int threads = 0;
+    std::string command_line;
+};
+// `gonio run`: trace every case and incidence on the explicit surface; write HDF5.
+int run_run_command(const RunOptions& options);
+
+// `gonio compare FILE`: the Model-vs-simulated table of a result file.
+int run_compare_command(const std::string& path);
+
 // `gonio info FILE [--json]`.
 int run_info_command(const std::string& path, bool as_json);
 

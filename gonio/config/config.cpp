@@ -21,14 +21,16 @@ const std::map<std::string, std::vector<std::string>>& schema() {
     static const std::map<std::string, std::vector<std::string>> s = {
         {"",
          {"seed", "name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface",
-          "case"}},
-        {"case", {"name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface"}},
+          "trace", "case"}},
+        {"case",
+         {"name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface", "trace"}},
         {"ndf", {"type", "alpha", "alpha_x", "alpha_y"}},
         {"material", {"type", "eta", "ior", "n", "k", "f0"}},
         {"spectrum", {"wavelengths"}},
         {"beam", {"theta_i", "phi_i"}},
         {"sensor", {"cells"}},
-        {"model", {"masking", "quadrature", "tolerance"}},
+        {"model", {"masking", "quadrature", "tolerance", "evaluate"}},
+        {"trace", {"rays", "orders", "max_bounces"}},
         {"surface",
          {"generator", "constraint", "size", "spacing", "iterations", "threshold",
           "stop_when_converged", "lattice", "relief", "correlation_length", "input", "edges"}},
@@ -36,7 +38,7 @@ const std::map<std::string, std::vector<std::string>>& schema() {
     return s;
 }
 const std::vector<std::string> kSections = {"ndf",    "material", "spectrum", "beam",
-                                            "sensor", "model",    "surface"};
+                                            "sensor", "model",    "surface",  "trace"};
 
 const Range kAlpha{1e-6, 100};
 const Range kThetaI{0, 90, false, true};
@@ -177,6 +179,11 @@ class Loader {
             masking == "uncorrelated" ? MaskingForm::uncorrelated : MaskingForm::height_correlated;
         c.quadrature.points = static_cast<int>(model.integer("quadrature", {1, 64}, 4));
         c.quadrature.rel_tol = model.number("tolerance", {1e-12, 0.1}, 1e-6);
+        c.evaluate_model = model.boolean("evaluate", true);
+        TableReader trace = reader(t, path, "trace");
+        c.rays = trace.integer("rays", {1, 1e12}, 1 << 20);
+        c.orders = static_cast<int>(trace.integer("orders", {1, 1000}, 10));
+        c.max_bounces = static_cast<int>(trace.integer("max_bounces", {1, 1000000}, 1000));
         load_surface(c, reader(t, path, "surface"));
         return c;
     }

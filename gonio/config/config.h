@@ -26,6 +26,11 @@ struct CaseConfig {
     MaskingForm masking = MaskingForm::height_correlated;
     CellQuadrature quadrature;
     SurfaceSpec surface; // [surface]: how the microsurface is made (defaults if absent)
+    // [trace]: the simulation.
+    long long rays = 1 << 20;   // per incidence
+    int orders = 10;            // bounce orders stored separately (then one overflow order)
+    int max_bounces = 1000;     // rays still bouncing then are cut (ledger: capped); 1 = L1 only
+    bool evaluate_model = true; // [model] evaluate = false skips Model L1 in gonio run
 };
 
 struct Config {

@@ -82,9 +82,17 @@ ResultSummary read_result_summary(const std::string& path) {
         if (H5Lexists(group, "wavelength", H5P_DEFAULT) > 0)
             c.wavelength_nm = h5::read_doubles(group, "wavelength");
         for (const std::string& ds : children(group, H5O_TYPE_DATASET)) {
-            const std::string suffix = "_albedo";
-            if (ds.size() > suffix.size() &&
-                ds.compare(ds.size() - suffix.size(), suffix.size(), suffix) == 0)
+            std::vector<hsize_t> dims;
+            {
+                h5::Handle d(H5Dopen2(group, ds.c_str(), H5P_DEFAULT), H5Dclose, "open dataset");
+                h5::Handle space(H5Dget_space(d), H5Sclose, "dataspace");
+                const int rank = H5Sget_simple_extent_ndims(space);
+                if (rank != 3) continue;
+                dims.resize(3);
+                H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+            }
+            if (dims[0] == c.theta_i_deg.size() && dims[1] == c.phi_i_deg.size() &&
+                dims[2] == hsize_t(c.channels))
                 c.albedos[ds] = h5::read_doubles(group, ds);
         }
         s.cases.push_back(std::move(c));

@@ -1,6 +1,7 @@
 #pragma once
 // Reads the summary of a result file: run metadata and, per case and incidence, every stored
-// albedo (datasets named *_albedo), for `gonio info`.
+// per-incidence quantity (datasets shaped [theta_i, phi_i, channel]: albedos, ledger entries,
+// comparison figures), for `gonio info` and `gonio compare`.
 #include <map>
 #include <string>
 #include <vector>

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <hdf5_hl.h>
 #include <stdexcept>
+#include <tuple>
 #include <unistd.h>
 
 namespace gonio {
@@ -74,14 +75,53 @@ void ResultWriter::write_run(const Config& cfg, const std::string& command_line)
     h5::write_string_attribute(file_, "cases", names);
 }
 
-void ResultWriter::write_model_case(const CaseConfig& c, const BeckersSensor& sensor,
-                                    const ModelL1Result& r) {
+// A case's group with its coordinate scales, ready for datasets to attach them.
+struct ResultWriter::CaseGroup {
+    h5::Handle group, theta_i, phi_i, cell, channel, order;
+    std::vector<h5::Handle> cell_coords, channel_coords;
+    size_t nt = 0, np = 0, ncell = 0, nc = 0;
+
+    void attach_incidence(hid_t ds) {
+        h5::check(H5DSattach_scale(ds, theta_i, 0), "attach theta_i");
+        h5::check(H5DSattach_scale(ds, phi_i, 1), "attach phi_i");
+    }
+    void attach_cells(hid_t ds, unsigned dim) {
+        h5::check(H5DSattach_scale(ds, cell, dim), "attach cell");
+        for (auto& h : cell_coords)
+            h5::check(H5DSattach_scale(ds, h, dim), "attach cell coordinate");
+    }
+    void attach_channels(hid_t ds, unsigned dim) {
+        h5::check(H5DSattach_scale(ds, channel, dim), "attach channel");
+        for (auto& h : channel_coords) h5::check(H5DSattach_scale(ds, h, dim), "attach wavelength");
+    }
+    // [theta_i, phi_i, channel] per-incidence values.
+    void per_incidence(const std::string& name, const std::vector<double>& v,
+                       const std::string& units, const std::string& what) {
+        h5::Handle d =
+            h5::write_dataset(group, name, {nt, np, nc}, {1, 1, nc}, v.data(), units, what);
+        attach_incidence(d);
+        attach_channels(d, 2);
+    }
+    // [theta_i, phi_i, cell, channel] maps.
+    void per_cell(const std::string& name, const std::vector<double>& v, const std::string& units,
+                  const std::string& what) {
+        h5::Handle d = h5::write_dataset(group, name, {nt, np, ncell, nc}, {1, 1, ncell, nc},
+                                         v.data(), units, what);
+        attach_incidence(d);
+        attach_cells(d, 2);
+        attach_channels(d, 3);
+    }
+};
+
+ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const BeckersSensor& sensor) {
     using h5::Handle;
+    CaseGroup g;
     Handle gcpl(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, "group creation property list");
     h5::check(H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
               "H5Pset_link_creation_order");
-    Handle group(H5Gcreate2(file_, c.name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose,
-                 ("create group " + c.name).c_str());
+    g.group = Handle(H5Gcreate2(file_, c.name.c_str(), H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose,
+                     ("create group " + c.name).c_str());
+    const hid_t group = g.group;
     h5::write_string_attribute(group, "name", c.name);
     h5::write_string_attribute(group, "ndf", make_ndf(c.ndf)->describe());
     h5::write_string_attribute(group, "material", c.material_type);
@@ -93,30 +133,27 @@ void ResultWriter::write_model_case(const CaseConfig& c, const BeckersSensor& se
     h5::write_int_attribute(group, "sensor_cells", sensor.cell_count());
     h5::write_string_attribute(group, "sensor", "Beckers & Beckers 2012 equal-area hemisphere");
 
-    const size_t nt = c.theta_i_deg.size(), np = c.phi_i_deg.size();
-    const size_t ncell = sensor.cell_count(), nc = c.fresnel.channels();
-
-    Handle theta_i = h5::write_scale(group, "theta_i", c.theta_i_deg, "degree",
-                                     "polar angle of the incident direction i");
-    Handle phi_i = h5::write_scale(group, "phi_i", c.phi_i_deg, "degree",
-                                   "azimuth of the incident direction i");
-    std::vector<double> index(ncell), channel(nc);
-    for (size_t k = 0; k < ncell; ++k) index[k] = static_cast<double>(k);
-    for (size_t k = 0; k < nc; ++k) channel[k] = static_cast<double>(k);
-    Handle cell = h5::write_scale(group, "cell", index, "", "sensor cell index", true);
-    Handle chan = h5::write_scale(group, "channel", channel, "",
-                                  nc == 1 && c.wavelengths_nm.empty()
-                                      ? "spectral channel (achromatic material: one channel)"
-                                      : "spectral channel",
-                                  true);
-
+    g.nt = c.theta_i_deg.size(), g.np = c.phi_i_deg.size();
+    g.ncell = sensor.cell_count(), g.nc = c.fresnel.channels();
+    g.theta_i = h5::write_scale(group, "theta_i", c.theta_i_deg, "degree",
+                                "polar angle of the incident direction i");
+    g.phi_i = h5::write_scale(group, "phi_i", c.phi_i_deg, "degree",
+                              "azimuth of the incident direction i");
+    std::vector<double> index(g.ncell), channel(g.nc);
+    for (size_t k = 0; k < g.ncell; ++k) index[k] = static_cast<double>(k);
+    for (size_t k = 0; k < g.nc; ++k) channel[k] = static_cast<double>(k);
+    g.cell = h5::write_scale(group, "cell", index, "", "sensor cell index", true);
+    g.channel = h5::write_scale(group, "channel", channel, "",
+                                g.nc == 1 && c.wavelengths_nm.empty()
+                                    ? "spectral channel (achromatic material: one channel)"
+                                    : "spectral channel",
+                                true);
     // Cell geometry: every coordinate is a dimension scale of the cell dimension.
-    std::vector<std::pair<Handle, std::string>> cell_coords;
     auto coord = [&](const char* name, auto get, const char* units, const char* what, bool deg) {
-        std::vector<double> v(ncell);
-        for (size_t k = 0; k < ncell; ++k) v[k] = get(sensor.cell(static_cast<int>(k)));
+        std::vector<double> v(g.ncell);
+        for (size_t k = 0; k < g.ncell; ++k) v[k] = get(sensor.cell(static_cast<int>(k)));
         if (deg) v = to_degrees(v);
-        cell_coords.emplace_back(h5::write_scale(group, name, v, units, what), name);
+        g.cell_coords.push_back(h5::write_scale(group, name, v, units, what));
     };
     coord(
         "theta_center", [](const SensorCell& s) { return s.theta_center; }, "degree",
@@ -142,42 +179,136 @@ void ResultWriter::write_model_case(const CaseConfig& c, const BeckersSensor& se
     coord(
         "projected_solid_angle", [](const SensorCell& s) { return s.projected_solid_angle; }, "sr",
         "integral of cos(theta) over the cell", false);
-    std::vector<Handle> extra;
     if (!c.wavelengths_nm.empty())
-        extra.push_back(h5::write_scale(group, "wavelength", c.wavelengths_nm, "nm",
-                                        "wavelength of the channel"));
+        g.channel_coords.push_back(h5::write_scale(group, "wavelength", c.wavelengths_nm, "nm",
+                                                   "wavelength of the channel"));
+    return g;
+}
 
+void ResultWriter::write_model(CaseGroup& g, const CaseConfig&, const BeckersSensor& sensor,
+                               const ModelL1Result& r) {
     std::vector<double> brdf(r.energy.size());
-    for (size_t k = 0; k < brdf.size(); ++k) {
-        const size_t cell_index = (k / nc) % ncell;
-        brdf[k] = r.energy[k] / sensor.cell(static_cast<int>(cell_index)).projected_solid_angle;
+    for (size_t k = 0; k < brdf.size(); ++k)
+        brdf[k] =
+            r.energy[k] / sensor.cell(static_cast<int>((k / g.nc) % g.ncell)).projected_solid_angle;
+    g.per_cell("model_l1", brdf, "1/sr",
+               "Model L1: cell average of the specular microfacet BRDF [R19 Eq. 2]");
+    g.per_cell("model_l1_energy", r.energy, "1",
+               "Model L1: fraction of the incident power leaving into the cell");
+    g.per_incidence("model_l1_albedo", r.albedo, "1",
+                    "Model L1: directional albedo, integral of f cos(theta_o) dw_o");
+    h5::Handle t = h5::write_dataset(g.group, "model_l1_seconds", {g.nt, g.np}, {1, 1},
+                                     r.seconds.data(), "s", "wall time of the Model L1 evaluation");
+    g.attach_incidence(t);
+}
+
+void ResultWriter::write_model_case(const CaseConfig& c, const BeckersSensor& sensor,
+                                    const ModelL1Result& r) {
+    CaseGroup g = open_case(c, sensor);
+    write_model(g, c, sensor, r);
+}
+
+void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSensor& sensor,
+                                         const SimulationResult& sim, const ModelL1Result* model) {
+    CaseGroup g = open_case(c, sensor);
+    h5::write_string_attribute(g.group, "surface", sim.surface);
+    h5::write_int_attribute(g.group, "rays_per_incidence", c.rays);
+    h5::write_int_attribute(g.group, "max_bounces", c.max_bounces);
+    const size_t no = size_t(sim.orders), nt = g.nt, np = g.np, ncell = g.ncell, nc = g.nc;
+    std::vector<double> orders(no);
+    for (size_t k = 0; k < no; ++k) orders[k] = double(k + 1);
+    g.order = h5::write_scale(g.group, "order", orders, "",
+                              "bounce order; the last one holds every order from it up", true);
+    h5::write_int_attribute(g.order, "overflow_order", static_cast<long long>(no));
+
+    // BRDF per order: energy over the cell's projected solid angle.
+    std::vector<double> brdf(sim.energy.size());
+    for (size_t k = 0; k < brdf.size(); ++k)
+        brdf[k] =
+            sim.energy[k] / sensor.cell(static_cast<int>((k / nc) % ncell)).projected_solid_angle;
+    {
+        h5::Handle d = h5::write_dataset(g.group, "brdf", {nt, np, no, ncell, nc},
+                                         {1, 1, no, ncell, nc}, brdf.data(), "1/sr",
+                                         "simulated BRDF per bounce order, cell averages");
+        g.attach_incidence(d);
+        h5::check(H5DSattach_scale(d, g.order, 2), "attach order");
+        g.attach_cells(d, 3);
+        g.attach_channels(d, 4);
+        h5::Handle e = h5::write_dataset(
+            g.group, "energy", {nt, np, no, nc}, {1, 1, no, nc}, sim.order_energy.data(), "1",
+            "fraction of the incident power reflected per bounce order");
+        g.attach_incidence(e);
+        h5::check(H5DSattach_scale(e, g.order, 2), "attach order");
+        g.attach_channels(e, 3);
     }
-    const std::vector<hsize_t> dims4{nt, np, ncell, nc}, chunk4{1, 1, ncell, nc};
-    Handle f =
-        h5::write_dataset(group, "model_l1", dims4, chunk4, brdf.data(), "1/sr",
-                          "Model L1: cell average of the specular microfacet BRDF [R19 Eq. 2]");
-    Handle e = h5::write_dataset(group, "model_l1_energy", dims4, chunk4, r.energy.data(), "1",
-                                 "Model L1: fraction of the incident power leaving into the cell");
-    Handle a =
-        h5::write_dataset(group, "model_l1_albedo", {nt, np, nc}, {1, 1, nc}, r.albedo.data(), "1",
-                          "Model L1: directional albedo, integral of f cos(theta_o) dw_o");
-    Handle t = h5::write_dataset(group, "model_l1_seconds", {nt, np}, {1, 1}, r.seconds.data(), "s",
-                                 "wall time of the Model L1 evaluation");
-    for (hid_t ds : {f.get(), e.get()}) {
-        h5::check(H5DSattach_scale(ds, theta_i, 0), "attach theta_i");
-        h5::check(H5DSattach_scale(ds, phi_i, 1), "attach phi_i");
-        h5::check(H5DSattach_scale(ds, cell, 2), "attach cell");
-        for (auto& [handle, name] : cell_coords)
-            h5::check(H5DSattach_scale(ds, handle, 2), "attach cell coordinate");
-        h5::check(H5DSattach_scale(ds, chan, 3), "attach channel");
-        for (auto& w : extra) h5::check(H5DSattach_scale(ds, w, 3), "attach wavelength");
+    // L1, L2+ = L-infinity - L1, L-infinity, and their albedos.
+    const size_t maps = nt * np;
+    std::vector<double> l1(maps * ncell * nc), linf(maps * ncell * nc), l2plus(maps * ncell * nc);
+    std::vector<double> a1(maps * nc, 0.0), a2(maps * nc, 0.0), ainf(maps * nc, 0.0),
+        a2plus(maps * nc, 0.0);
+    for (size_t m = 0; m < maps; ++m)
+        for (size_t o = 0; o < no; ++o)
+            for (size_t c2 = 0; c2 < ncell * nc; ++c2) {
+                const double f = brdf[(m * no + o) * ncell * nc + c2];
+                if (o == 0) l1[m * ncell * nc + c2] = f;
+                linf[m * ncell * nc + c2] += f;
+            }
+    for (size_t k = 0; k < l1.size(); ++k) l2plus[k] = linf[k] - l1[k];
+    for (size_t m = 0; m < maps; ++m)
+        for (size_t o = 0; o < no; ++o)
+            for (size_t k = 0; k < nc; ++k) {
+                const double e = sim.order_energy[(m * no + o) * nc + k];
+                ainf[m * nc + k] += e;
+                if (o == 0) a1[m * nc + k] = e;
+                if (o == 1) a2[m * nc + k] = e;
+                if (o >= 1) a2plus[m * nc + k] += e;
+            }
+    g.per_cell("brdf_l1", l1, "1/sr", "simulated single-bounce BRDF (L1)");
+    g.per_cell("brdf_l2plus", l2plus, "1/sr", "simulated multiple-bounce BRDF (L2+ = Linf - L1)");
+    g.per_cell("brdf_linf", linf, "1/sr", "simulated BRDF, all orders (Linf)");
+    g.per_incidence("l1_albedo", a1, "1", "simulated L1 albedo");
+    g.per_incidence("l2_albedo", a2, "1", "simulated second-order albedo");
+    g.per_incidence("l2plus_albedo", a2plus, "1", "simulated L2+ albedo");
+    g.per_incidence("linf_albedo", ainf, "1", "simulated Linf albedo (all reflected light)");
+    g.per_incidence("ledger_absorbed", sim.absorbed, "1", "absorbed by the facets");
+    g.per_incidence("ledger_capped", sim.capped, "1", "cut by the bounce cap");
+    g.per_incidence("ledger_lost", sim.lost, "1", "lost (crack or endless ray): should be 0");
+    g.per_incidence("ledger_unaccounted", sim.unaccounted, "1",
+                    "1 - (reflected + absorbed + capped + lost): zero to round-off");
+    for (auto [name, v, what] : {std::tuple<const char*, const std::vector<double>*, const char*>{
+                                     "rays", &sim.rays, "rays traced"},
+                                 {"segments", &sim.segments, "ray segments (rtcIntersect1 calls)"},
+                                 {"trace_seconds", &sim.seconds, "wall time of the tracing"}}) {
+        h5::Handle d = h5::write_dataset(g.group, name, {nt, np}, {1, 1}, v->data(),
+                                         std::string(name) == "trace_seconds" ? "s" : "", what);
+        g.attach_incidence(d);
     }
-    h5::check(H5DSattach_scale(a, theta_i, 0), "attach theta_i");
-    h5::check(H5DSattach_scale(a, phi_i, 1), "attach phi_i");
-    h5::check(H5DSattach_scale(a, chan, 2), "attach channel");
-    for (auto& w : extra) h5::check(H5DSattach_scale(a, w, 2), "attach wavelength");
-    h5::check(H5DSattach_scale(t, theta_i, 0), "attach theta_i");
-    h5::check(H5DSattach_scale(t, phi_i, 1), "attach phi_i");
+    if (!model) return;
+    write_model(g, c, sensor, *model);
+    // Comparison: albedos, their relative difference, the per-cell relative L1 distance
+    // sum |f_sim - f_model| Omega / sum f_model Omega, and the ratio map (0 where the model is 0).
+    std::vector<double> rel(maps * nc), dist(maps * nc), ratio(maps * ncell * nc, 0.0);
+    for (size_t m = 0; m < maps; ++m)
+        for (size_t k = 0; k < nc; ++k) {
+            const double am = model->albedo[m * nc + k];
+            rel[m * nc + k] = am > 0 ? (a1[m * nc + k] - am) / am : 0.0;
+            double num = 0, den = 0;
+            for (size_t cell = 0; cell < ncell; ++cell) {
+                const size_t i = (m * ncell + cell) * nc + k;
+                const double es = sim.energy[(m * no * ncell + cell) * nc + k]; // order 1
+                const double em = model->energy[i];
+                num += std::abs(es - em);
+                den += em;
+                ratio[i] = em > 0 ? es / em : 0.0;
+            }
+            dist[m * nc + k] = den > 0 ? num / den : 0.0;
+        }
+    g.per_incidence("l1_relative_difference", rel, "1",
+                    "(simulated L1 albedo - model L1 albedo) / model L1 albedo");
+    g.per_incidence(
+        "l1_distance", dist, "1",
+        "sum |f_sim - f_model| Omega_perp / sum f_model Omega_perp over the cells (L1)");
+    g.per_cell("l1_ratio", ratio, "1", "simulated L1 / model L1 per cell (0 where the model is 0)");
 }
 
 void ResultWriter::commit() {

@@ -19,6 +19,16 @@ struct ModelL1Result {
     std::vector<double> seconds; // [theta_i][phi_i]: wall time of the evaluation
 };
 
+// The simulation of one case over its sweep (theta_i major, then phi_i).
+struct SimulationResult {
+    int orders = 0;                   // K + 1: orders 1..K, then "K+1 or more"
+    std::vector<double> energy;       // [theta_i][phi_i][order][cell][channel]
+    std::vector<double> order_energy; // [theta_i][phi_i][order][channel]
+    std::vector<double> absorbed, capped, lost, unaccounted; // [theta_i][phi_i][channel]
+    std::vector<double> rays, segments, seconds;             // [theta_i][phi_i]
+    std::string surface; // where the surface came from (cache path, input)
+};
+
 class ResultWriter {
   public:
     // Throws std::runtime_error if `path` exists and !overwrite.
@@ -29,12 +39,22 @@ class ResultWriter {
 
     void write_run(const Config& cfg, const std::string& command_line);
     void write_model_case(const CaseConfig& c, const BeckersSensor& sensor, const ModelL1Result& r);
+    // The simulated BRDF per order, L1 / L2+ / L-infinity, the ledger, and, when `model` is given,
+    // Model L1 on the same cells with the comparison (albedos, relative difference, per-cell
+    // relative L1 distance, ratio map).
+    void write_simulation_case(const CaseConfig& c, const BeckersSensor& sensor,
+                               const SimulationResult& sim, const ModelL1Result* model);
     // Closes the file and renames it to its final path.
     void commit();
 
     static std::string conventions();
 
   private:
+    struct CaseGroup;
+    CaseGroup open_case(const CaseConfig& c, const BeckersSensor& sensor);
+    void write_model(CaseGroup& g, const CaseConfig& c, const BeckersSensor& sensor,
+                     const ModelL1Result& r);
+
     std::string path_, tmp_path_;
     h5::Handle file_;
     bool committed_ = false;

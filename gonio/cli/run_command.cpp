@@ -1,0 +1,131 @@
+#include "gonio/cli/commands.h"
+#include "gonio/cli/progress.h"
+#include "gonio/config/config.h"
+#include "gonio/config/config_error.h"
+#include "gonio/io/result_writer.h"
+#include "gonio/material/material.h"
+#include "gonio/model/cell_integrator.h"
+#include "gonio/trace/gonioreflectometer.h"
+#include "heightfield/surface_source.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <tbb/global_control.h>
+#include <thread>
+
+namespace gonio {
+
+int run_run_command(const RunOptions& o) {
+    const Config cfg = load_config(o.config, o.overrides); // throws ConfigError
+    for (size_t k = 0; k < cfg.cases.size(); ++k) {
+        const std::string& type = cfg.cases[k].material_type;
+        if (type != "mirror" && type != "conductor" && type != "schlick")
+            throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].material.type",
+                              "\"" + type +
+                                  "\" cannot be traced yet; gonio run traces \"mirror\", "
+                                  "\"conductor\" and \"schlick\" facets");
+    }
+    std::unique_ptr<tbb::global_control> limit;
+    if (o.threads > 0)
+        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                      o.threads);
+    const int threads = o.threads > 0 ? o.threads : int(std::thread::hardware_concurrency());
+    const std::string output =
+        o.output.empty() ? std::filesystem::path(o.config).stem().string() + ".h5" : o.output;
+    ResultWriter writer(output, o.overwrite); // an existing or unwritable output fails here
+    writer.write_run(cfg, o.command_line);
+    const SurfaceCache cache(o.no_cache
+                                 ? std::string()
+                                 : (o.cache_dir.empty() ? default_cache_directory() : o.cache_dir));
+    long long total = 0, done = 0;
+    for (const auto& c : cfg.cases) total += c.theta_i_deg.size() * c.phi_i_deg.size();
+    if (!o.quiet)
+        std::printf("%-20s %7s %7s %10s %10s %10s %10s %9s\n", "case", "theta_i", "phi_i", "L1",
+                    "model_L1", "rel_diff", "L2+", "lost");
+    for (size_t ci = 0; ci < cfg.cases.size(); ++ci) {
+        const CaseConfig& c = cfg.cases[ci];
+        const auto ndf = make_ndf(c.ndf);
+        SurfaceOrigin origin;
+        const HeightField surface = obtain_surface(*ndf, c.surface, cache, threads, origin);
+        if (!origin.warning.empty())
+            std::fprintf(stderr, "gonio: warning: %s\n", origin.warning.c_str());
+        const Scene scene(surface); // one surface per case: sweeps never regenerate it
+        const BeckersSensor sensor(c.sensor_cells);
+        const SpecularReflector material(c.fresnel);
+        const MicrofacetModel model(*ndf, c.fresnel, c.masking);
+        const int nc = material.channels();
+        SimulationResult sim;
+        sim.orders = c.orders + 1;
+        sim.surface = origin.loaded ? c.surface.input : origin.cache_path;
+        ModelL1Result ml;
+        Progress progress(total, o.quiet);
+        for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti) {
+            for (size_t pi = 0; pi < c.phi_i_deg.size(); ++pi) {
+                char label[160];
+                std::snprintf(label, sizeof label, "%s theta_i=%g phi_i=%g", c.name.c_str(),
+                              c.theta_i_deg[ti], c.phi_i_deg[pi]);
+                progress.update(done, label);
+                const Vec3 wi =
+                    spherical_direction(radians(c.theta_i_deg[ti]), radians(c.phi_i_deg[pi]));
+                TraceSettings st;
+                st.rays = c.rays;
+                st.orders = c.orders;
+                st.max_bounces = c.max_bounces;
+                st.seed = cfg.seed;
+                st.stream =
+                    (std::uint64_t(ci) << 40) ^ (std::uint64_t(ti) << 20) ^ std::uint64_t(pi);
+                const TraceResult r = trace_incidence(scene, material, sensor, wi, st);
+                sim.energy.insert(sim.energy.end(), r.energy.begin(), r.energy.end());
+                sim.order_energy.insert(sim.order_energy.end(), r.ledger.reflected.begin(),
+                                        r.ledger.reflected.end());
+                sim.absorbed.insert(sim.absorbed.end(), r.ledger.absorbed.begin(),
+                                    r.ledger.absorbed.end());
+                sim.capped.insert(sim.capped.end(), r.ledger.capped.begin(), r.ledger.capped.end());
+                sim.lost.insert(sim.lost.end(), r.ledger.lost.begin(), r.ledger.lost.end());
+                sim.unaccounted.insert(sim.unaccounted.end(), r.ledger.unaccounted.begin(),
+                                       r.ledger.unaccounted.end());
+                sim.rays.push_back(double(r.rays));
+                sim.segments.push_back(double(r.segments));
+                sim.seconds.push_back(r.seconds);
+                std::vector<double> albedo;
+                if (c.evaluate_model) {
+                    const auto t0 = std::chrono::steady_clock::now();
+                    const std::vector<double> e =
+                        model_cell_energy(model, wi, sensor, c.quadrature);
+                    albedo = albedo_from_cells(e, nc);
+                    ml.energy.insert(ml.energy.end(), e.begin(), e.end());
+                    ml.albedo.insert(ml.albedo.end(), albedo.begin(), albedo.end());
+                    ml.seconds.push_back(
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
+                            .count());
+                }
+                ++done;
+                if (!o.quiet) {
+                    progress.finish();
+                    for (int k = 0; k < nc; ++k) {
+                        double l2plus = 0;
+                        for (int order = 1; order < sim.orders; ++order)
+                            l2plus += r.ledger.reflected[size_t(order) * nc + k];
+                        const double l1 = r.ledger.reflected[k];
+                        std::printf("%-20s %7.2f %7.2f %10.6f", c.name.c_str(), c.theta_i_deg[ti],
+                                    c.phi_i_deg[pi], l1);
+                        if (c.evaluate_model)
+                            std::printf(" %10.6f %+10.4f", albedo[k], (l1 - albedo[k]) / albedo[k]);
+                        else
+                            std::printf(" %10s %10s", "-", "-");
+                        std::printf(" %10.6f %9.2e\n", l2plus, r.ledger.lost[k]);
+                    }
+                }
+            }
+        }
+        progress.finish();
+        writer.write_simulation_case(c, sensor, sim, c.evaluate_model ? &ml : nullptr);
+    }
+    writer.commit();
+    if (!o.quiet) std::printf("wrote %s\n", output.c_str());
+    return 0;
+}
+
+} // namespace gonio
