@@ -323,3 +323,22 @@ TEST_CASE("gonio run traces, compares with the model, and writes the simulation"
     CHECK(!fs::exists(d / "x.h5"));
     fs::remove_all(d);
 }
+
+TEST_CASE("gonio run with Lambertian facets: the model must be switched off explicitly") {
+    const fs::path d = fresh_dir("lambert");
+    write(d / "l.toml", "[ndf]\ntype = \"beckmann\"\nalpha = 0.5\n[beam]\ntheta_i = 30\n"
+                        "[material]\ntype = \"lambertian\"\nalbedo = 0.8\n[sensor]\ncells = 145\n"
+                        "[surface]\nsize = 64\niterations = 20\n[trace]\nrays = 10000\n");
+    const Run refused = run_gonio(d, "run l.toml -o out.h5 --cache-dir cache");
+    CHECK(refused.code == 2);
+    CHECK(refused.err.find("key 'case[0].model.evaluate'") != std::string::npos);
+    CHECK(!fs::exists(d / "out.h5"));
+    const Run r = run_gonio(d, "run l.toml -o out.h5 --cache-dir cache --set model.evaluate=false");
+    CHECK(r.code == 0);
+    const ResultSummary s = read_result_summary((d / "out.h5").string());
+    REQUIRE(s.cases.size() == 1);
+    CHECK(s.cases[0].albedos.count("model_l1_albedo") == 0);
+    CHECK(s.cases[0].albedos.at("linf_albedo")[0] <= 0.8 + 1e-12);
+    CHECK(s.cases[0].attributes.at("fresnel").find("lambertian(albedo=0.8") == 0);
+    fs::remove_all(d);
+}

@@ -121,3 +121,31 @@ TEST_CASE("reciprocity: f(i, o) = f(o, i) within the Monte Carlo error") {
         CHECK(std::abs(fab - fba) < 4 * std::sqrt(ea * ea + eb * eb));
     }
 }
+
+TEST_CASE("Lambertian facets reflect at most their albedo, and the ledger closes") {
+    const Scene scene(beckmann_surface(0.5));
+    const BeckersSensor sensor(145);
+    const LambertianFacet white({1.0}), grey({0.6, 0.3});
+    for (double theta : {0.0, 60.0, 89.0}) {
+        const Vec3 wi = spherical_direction(radians(theta), 0.0);
+        TraceSettings st;
+        st.rays = 1 << 16;
+        CAPTURE(theta);
+        const TraceResult w = trace_incidence(scene, white, sensor, wi, st);
+        double total = 0;
+        for (int o = 0; o < w.orders; ++o) total += w.ledger.reflected[o];
+        // Albedo 1: nothing is absorbed; all leaves, unless cut by the bounce cap.
+        CHECK(total + w.ledger.capped[0] == doctest::Approx(1.0).epsilon(1e-12));
+        CHECK(w.ledger.lost[0] == 0.0);
+        const TraceResult g = trace_incidence(scene, grey, sensor, wi, st);
+        for (int k = 0; k < 2; ++k) {
+            double reflected = 0;
+            for (int o = 0; o < g.orders; ++o) reflected += g.ledger.reflected[size_t(o) * 2 + k];
+            CHECK(reflected <= (k == 0 ? 0.6 : 0.3) + 1e-12);
+            CHECK(std::abs(g.ledger.unaccounted[k]) < 1e-12);
+            CHECK(g.ledger.lost[k] == 0.0);
+        }
+        // Single scattering of a Lambertian facet: order 1 carries albedo x (its visible share).
+        CHECK(g.ledger.reflected[0] / g.ledger.reflected[1] == doctest::Approx(2.0).epsilon(1e-12));
+    }
+}

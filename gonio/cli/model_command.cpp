@@ -1,6 +1,7 @@
 #include "gonio/cli/commands.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
+#include "gonio/config/config_error.h"
 #include "gonio/io/result_writer.h"
 #include "gonio/model/cell_integrator.h"
 
@@ -21,6 +22,11 @@ std::string default_output(const std::string& config) {
 
 int run_model_command(const ModelOptions& options) {
     const Config cfg = load_config(options.config, options.overrides); // throws ConfigError
+    for (size_t k = 0; k < cfg.cases.size(); ++k)
+        if (cfg.cases[k].material_type == "lambertian")
+            throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].material.type",
+                              "Model L1 is the specular microfacet BRDF; \"lambertian\" facets "
+                              "have no model here yet");
     const std::string output =
         options.output.empty() ? default_output(options.config) : options.output;
     std::unique_ptr<tbb::global_control> threads;

@@ -21,11 +21,14 @@ int run_run_command(const RunOptions& o) {
     const Config cfg = load_config(o.config, o.overrides); // throws ConfigError
     for (size_t k = 0; k < cfg.cases.size(); ++k) {
         const std::string& type = cfg.cases[k].material_type;
-        if (type != "mirror" && type != "conductor" && type != "schlick")
+        if (type == "dielectric")
             throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].material.type",
-                              "\"" + type +
-                                  "\" cannot be traced yet; gonio run traces \"mirror\", "
-                                  "\"conductor\" and \"schlick\" facets");
+                              "\"dielectric\" cannot be traced yet; gonio run traces \"mirror\", "
+                              "\"conductor\", \"schlick\" and \"lambertian\" facets");
+        if (type == "lambertian" && cfg.cases[k].evaluate_model)
+            throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].model.evaluate",
+                              "Model L1 is the specular microfacet BRDF; for lambertian facets set "
+                              "model.evaluate = false");
     }
     std::unique_ptr<tbb::global_control> limit;
     if (o.threads > 0)
@@ -53,7 +56,12 @@ int run_run_command(const RunOptions& o) {
             std::fprintf(stderr, "gonio: warning: %s\n", origin.warning.c_str());
         const Scene scene(surface); // one surface per case: sweeps never regenerate it
         const BeckersSensor sensor(c.sensor_cells);
-        const SpecularReflector material(c.fresnel);
+        std::unique_ptr<Material> material_ptr;
+        if (c.material_type == "lambertian")
+            material_ptr = std::make_unique<LambertianFacet>(c.albedo);
+        else
+            material_ptr = std::make_unique<SpecularReflector>(c.fresnel);
+        const Material& material = *material_ptr;
         const MicrofacetModel model(*ndf, c.fresnel, c.masking);
         const int nc = material.channels();
         SimulationResult sim;

@@ -25,7 +25,7 @@ const std::map<std::string, std::vector<std::string>>& schema() {
         {"case",
          {"name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface", "trace"}},
         {"ndf", {"type", "alpha", "alpha_x", "alpha_y"}},
-        {"material", {"type", "eta", "ior", "n", "k", "f0"}},
+        {"material", {"type", "eta", "ior", "n", "k", "f0", "albedo"}},
         {"spectrum", {"wavelengths"}},
         {"beam", {"theta_i", "phi_i"}},
         {"sensor", {"cells"}},
@@ -269,6 +269,15 @@ class Loader {
         };
         if (c.material_type == "mirror") {
             c.fresnel = FresnelTerm::mirror();
+        } else if (c.material_type == "lambertian") {
+            c.albedo = r.number_list("albedo", {0, 1});
+            if (c.albedo.size() > 1) { // spectral: one value per wavelength
+                c.wavelengths_nm = wavelengths();
+                if (c.albedo.size() != c.wavelengths_nm.size())
+                    r.fail("albedo", "has " + std::to_string(c.albedo.size()) +
+                                         " values; give one (achromatic) or one per wavelength (" +
+                                         std::to_string(c.wavelengths_nm.size()) + ")");
+            }
         } else if (c.material_type == "dielectric" || c.material_type == "schlick") {
             const bool dielectric = c.material_type == "dielectric";
             const std::string key = dielectric ? "eta" : "f0";
@@ -345,6 +354,13 @@ class Loader {
 };
 
 } // namespace
+
+std::string CaseConfig::material_description() const {
+    if (material_type != "lambertian") return fresnel.describe();
+    std::string s = "lambertian(albedo=";
+    for (size_t k = 0; k < albedo.size(); ++k) s += (k ? ", " : "") + std::to_string(albedo[k]);
+    return s + ")";
+}
 
 const char* masking_name(MaskingForm form) {
     return form == MaskingForm::uncorrelated ? "uncorrelated" : "height-correlated";

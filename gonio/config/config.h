@@ -18,7 +18,12 @@ struct CaseConfig {
     NdfSpec ndf;
     std::string material_type;   // "mirror" | "dielectric" | "conductor" | "schlick"
     std::string material_source; // where the optical constants came from (table path), or ""
-    FresnelTerm fresnel;
+    FresnelTerm fresnel;         // specular facets
+    std::vector<double> albedo;  // lambertian facets: one value, or one per wavelength
+    int channels() const {
+        return material_type == "lambertian" ? int(albedo.size()) : fresnel.channels();
+    }
+    std::string material_description() const;
     std::vector<double> wavelengths_nm; // one per channel; empty when the material is achromatic
     std::vector<double> theta_i_deg;    // incidence sweep, each in [0, 90)
     std::vector<double> phi_i_deg;      // each in [0, 360]

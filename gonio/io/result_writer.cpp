@@ -125,7 +125,7 @@ ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const Becke
     h5::write_string_attribute(group, "name", c.name);
     h5::write_string_attribute(group, "ndf", make_ndf(c.ndf)->describe());
     h5::write_string_attribute(group, "material", c.material_type);
-    h5::write_string_attribute(group, "fresnel", c.fresnel.describe());
+    h5::write_string_attribute(group, "fresnel", c.material_description());
     h5::write_string_attribute(group, "material_source", c.material_source);
     h5::write_string_attribute(group, "masking", masking_name(c.masking));
     h5::write_int_attribute(group, "quadrature_points", c.quadrature.points);
@@ -134,7 +134,7 @@ ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const Becke
     h5::write_string_attribute(group, "sensor", "Beckers & Beckers 2012 equal-area hemisphere");
 
     g.nt = c.theta_i_deg.size(), g.np = c.phi_i_deg.size();
-    g.ncell = sensor.cell_count(), g.nc = c.fresnel.channels();
+    g.ncell = sensor.cell_count(), g.nc = c.channels();
     g.theta_i = h5::write_scale(group, "theta_i", c.theta_i_deg, "degree",
                                 "polar angle of the incident direction i");
     g.phi_i = h5::write_scale(group, "phi_i", c.phi_i_deg, "degree",

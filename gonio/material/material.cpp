@@ -1,5 +1,7 @@
 #include "gonio/material/material.h"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace gonio {
@@ -15,6 +17,22 @@ bool SpecularReflector::scatter(const Vec3& wi, const Vec3& m, Rng&, Vec3& wo,
     if (channels() > 16) many.resize(channels()), F = many.data();
     fresnel_.eval(std::abs(c), F);
     for (int k = 0; k < channels(); ++k) weight[k] *= F[k];
+    return true;
+}
+
+bool LambertianFacet::scatter(const Vec3&, const Vec3& m, Rng& rng, Vec3& wo,
+                              double* weight) const {
+    // Cosine-weighted direction about m (Malley's method) in an orthonormal frame of m
+    // (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").
+    const double sign = std::copysign(1.0, m.z);
+    const double a = -1.0 / (sign + m.z), b = m.x * m.y * a;
+    const Vec3 t{1.0 + sign * m.x * m.x * a, sign * b, -sign * m.x};
+    const Vec3 u{b, sign + m.y * m.y * a, -m.y};
+    const double r = std::sqrt(rng.uniform()), phi = kTwoPi * rng.uniform();
+    const double x = r * std::cos(phi), y = r * std::sin(phi),
+                 z = std::sqrt(std::max(0.0, 1 - r * r));
+    wo = normalize(x * t + y * u + z * m);
+    for (int k = 0; k < channels(); ++k) weight[k] *= albedo_[k];
     return true;
 }
 

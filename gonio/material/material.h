@@ -7,6 +7,8 @@
 #include "core/random.h"
 #include "gonio/material/fresnel_term.h"
 
+#include <vector>
+
 namespace gonio {
 
 class Material {
@@ -28,6 +30,18 @@ class SpecularReflector final : public Material {
 
   private:
     FresnelTerm fresnel_;
+};
+
+// A Lambertian facet: the ray leaves in a cosine-distributed direction about the facet normal,
+// weighted by the albedo per channel (the facet BRDF albedo / pi, importance-sampled).
+class LambertianFacet final : public Material {
+  public:
+    explicit LambertianFacet(std::vector<double> albedo) : albedo_(std::move(albedo)) {}
+    int channels() const override { return int(albedo_.size()); }
+    bool scatter(const Vec3& wi, const Vec3& m, Rng& rng, Vec3& wo, double* weight) const override;
+
+  private:
+    std::vector<double> albedo_;
 };
 
 } // namespace gonio
