@@ -259,8 +259,8 @@ class Loader {
     }
 
     void load_material(CaseConfig& c, TableReader r, TableReader spectrum) {
-        c.material_type =
-            r.string("type", {"mirror", "dielectric", "conductor", "schlick"}, "mirror");
+        c.material_type = r.string(
+            "type", {"mirror", "dielectric", "conductor", "schlick", "lambertian"}, "mirror");
         // Wavelengths matter only to a spectral material; read them lazily so that an unused
         // [spectrum] is reported.
         auto wavelengths = [&]() {
