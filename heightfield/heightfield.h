@@ -42,19 +42,25 @@ struct HeightField {
     double height_at(double x, double y, double* sp = nullptr, double* sq = nullptr) const {
         const double gx = x / spacing, gy = y / spacing;
         const double fx = std::floor(gx), fy = std::floor(gy);
-        const int cx = int(fx), cy = int(fy);
         const double u = gx - fx, v = gy - fy;
-        double a, b, h;
+        // One wrap per axis (the hot path of ray tracing: no modulo per sample).
+        const int x0 = wrap(int(fx)), y0 = wrap(int(fy));
+        const int x1 = x0 + 1 == n ? 0 : x0 + 1, y1 = y0 + 1 == n ? 0 : y0 + 1;
+        const float* r0 = &h[size_t(y0) * n];
+        const float* r1 = &h[size_t(y1) * n];
+        const double h00 = r0[x0], h10 = r0[x1], h01 = r1[x0], h11 = r1[x1];
+        double a, b, z;
         if (u + v <= 1.0) { // triangle A: (x, y), (x+1, y), (x, y+1)
-            a = p(cx, cy), b = q(cx, cy);
-            h = at(cx, cy) + (u * a + v * b) * spacing;
+            a = (h10 - h00) / spacing, b = (h01 - h00) / spacing;
+            z = h00 + (u * a + v * b) * spacing;
         } else { // triangle B: (x+1, y+1), (x, y+1), (x+1, y)
-            a = p(cx, cy + 1), b = q(cx + 1, cy);
-            h = at(cx + 1, cy + 1) - ((1 - u) * a + (1 - v) * b) * spacing;
+            a = (h11 - h01) / spacing, b = (h11 - h10) / spacing;
+            z = h11 - ((1 - u) * a + (1 - v) * b) * spacing;
         }
+        double h_value = z;
         if (sp) *sp = a;
         if (sq) *sq = b;
-        return h;
+        return h_value;
     }
 };
 

@@ -97,12 +97,16 @@ SurfaceHit Scene::trace(Vec3 o, const Vec3& d, int max_wraps) const {
     const double top = z_max_ + epsilon_, bottom = z_min_ - epsilon_;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
+    // Distances to the walls of the box along d: the wall ahead on each axis, by reciprocals.
+    const double inf = std::numeric_limits<double>::infinity();
+    const double ix = d.x != 0 ? 1.0 / d.x : 0.0, iy = d.y != 0 ? 1.0 / d.y : 0.0;
+    const double iz = d.z != 0 ? 1.0 / d.z : 0.0;
+    const double wall_x = d.x > 0 ? period_ : 0.0, wall_y = d.y > 0 ? period_ : 0.0;
+    const double wall_z = d.z > 0 ? top : bottom;
     for (r.wraps = 0; r.wraps <= max_wraps;) {
-        // Distances to the walls of the box along d.
-        const double inf = std::numeric_limits<double>::infinity();
-        const double tx = d.x > 0 ? (period_ - o.x) / d.x : d.x < 0 ? -o.x / d.x : inf;
-        const double ty = d.y > 0 ? (period_ - o.y) / d.y : d.y < 0 ? -o.y / d.y : inf;
-        const double tz = d.z > 0 ? (top - o.z) / d.z : d.z < 0 ? (bottom - o.z) / d.z : inf;
+        const double tx = d.x != 0 ? (wall_x - o.x) * ix : inf;
+        const double ty = d.y != 0 ? (wall_y - o.y) * iy : inf;
+        const double tz = d.z != 0 ? (wall_z - o.z) * iz : inf;
         const double t_wall = std::max(0.0, std::min({tx, ty, tz}));
         RTCRayHit rh{};
         rh.ray.org_x = float(o.x), rh.ray.org_y = float(o.y), rh.ray.org_z = float(o.z);
