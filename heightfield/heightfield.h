@@ -57,10 +57,9 @@ struct HeightField {
             a = (h11 - h01) / spacing, b = (h11 - h10) / spacing;
             z = h11 - ((1 - u) * a + (1 - v) * b) * spacing;
         }
-        double h_value = z;
         if (sp) *sp = a;
         if (sq) *sq = b;
-        return h_value;
+        return z;
     }
 };
 

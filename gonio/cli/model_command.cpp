@@ -1,3 +1,4 @@
+#include "gonio/cli/cli_common.h"
 #include "gonio/cli/commands.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
@@ -9,8 +10,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <tbb/global_control.h>
-
 namespace gonio {
 
 namespace {
@@ -29,10 +28,7 @@ int run_model_command(const ModelOptions& options) {
                               "have no model here yet");
     const std::string output =
         options.output.empty() ? default_output(options.config) : options.output;
-    std::unique_ptr<tbb::global_control> threads;
-    if (options.threads > 0)
-        threads = std::make_unique<tbb::global_control>(
-            tbb::global_control::max_allowed_parallelism, options.threads);
+    const auto limit = limit_threads(options.threads);
 
     ResultWriter writer(output, options.overwrite); // refuses to replace a file before any work
     writer.write_run(cfg, options.command_line);

@@ -1,3 +1,4 @@
+#include "gonio/cli/cli_common.h"
 #include "gonio/cli/commands.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
@@ -12,8 +13,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <tbb/global_control.h>
-#include <thread>
 
 namespace gonio {
 
@@ -30,18 +29,13 @@ int run_run_command(const RunOptions& o) {
                               "Model L1 is the specular microfacet BRDF; for lambertian facets set "
                               "model.evaluate = false");
     }
-    std::unique_ptr<tbb::global_control> limit;
-    if (o.threads > 0)
-        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                      o.threads);
-    const int threads = o.threads > 0 ? o.threads : int(std::thread::hardware_concurrency());
+    const auto limit = limit_threads(o.threads);
+    const int threads = worker_threads(o.threads);
     const std::string output =
         o.output.empty() ? std::filesystem::path(o.config).stem().string() + ".h5" : o.output;
     ResultWriter writer(output, o.overwrite); // an existing or unwritable output fails here
     writer.write_run(cfg, o.command_line);
-    const SurfaceCache cache(o.no_cache
-                                 ? std::string()
-                                 : (o.cache_dir.empty() ? default_cache_directory() : o.cache_dir));
+    const SurfaceCache cache = surface_cache(o.no_cache, o.cache_dir);
     long long total = 0, done = 0;
     for (const auto& c : cfg.cases) total += c.theta_i_deg.size() * c.phi_i_deg.size();
     if (!o.quiet)

@@ -1,3 +1,4 @@
+#include "gonio/cli/cli_common.h"
 #include "gonio/cli/commands.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
@@ -10,8 +11,6 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <tbb/global_control.h>
-#include <thread>
 
 namespace gonio {
 
@@ -80,11 +79,8 @@ void write_ndf_comparison(const std::string& exr, const std::string& csv, const 
 
 int run_surface_command(const SurfaceOptions& o) {
     const Config cfg = load_config(o.config, o.overrides); // throws ConfigError
-    std::unique_ptr<tbb::global_control> limit;
-    if (o.threads > 0)
-        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                      o.threads);
-    const int threads = o.threads > 0 ? o.threads : int(std::thread::hardware_concurrency());
+    const auto limit = limit_threads(o.threads);
+    const int threads = worker_threads(o.threads);
     // Refuse to replace outputs before any work.
     for (const CaseConfig& c : cfg.cases) {
         const std::string out = output_for(o, cfg, c);
@@ -92,9 +88,7 @@ int run_surface_command(const SurfaceOptions& o) {
             if (!o.overwrite && fs::exists(f))
                 throw std::runtime_error(f + ": exists; pass --overwrite to replace it");
     }
-    const SurfaceCache cache(o.no_cache
-                                 ? std::string()
-                                 : (o.cache_dir.empty() ? default_cache_directory() : o.cache_dir));
+    const SurfaceCache cache = surface_cache(o.no_cache, o.cache_dir);
     for (const CaseConfig& c : cfg.cases) {
         const auto ndf = make_ndf(c.ndf);
         Progress progress(c.surface.iterations, o.quiet);

@@ -46,13 +46,17 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
             Vec3 dir = down;
             std::fill(w.begin(), w.end(), power);
             int bounces = 0;
+            // The ray's remaining power ends in a ledger entry.
+            auto spend = [&](std::vector<double>& entry) {
+                for (int k = 0; k < nc; ++k) entry[k] += w[k];
+            };
             for (;;) {
                 const SurfaceHit h = scene.trace(origin, dir);
                 o.segments += h.wraps + 1;
                 if (h.kind == SurfaceHit::escaped_up) {
-                    if (bounces ==
-                        0) { // cannot happen for a beam aimed down; keep the ledger honest
-                        for (int k = 0; k < nc; ++k) o.lost[k] += w[k];
+                    // A beam aimed down cannot leave before a bounce; keep the ledger honest.
+                    if (bounces == 0) {
+                        spend(o.lost);
                         break;
                     }
                     const int order = std::min(bounces, orders) - 1;
@@ -61,11 +65,11 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
                     break;
                 }
                 if (h.kind != SurfaceHit::hit) { // down through an opaque surface, or endless
-                    for (int k = 0; k < nc; ++k) o.lost[k] += w[k];
+                    spend(o.lost);
                     break;
                 }
                 if (bounces == st.max_bounces) {
-                    for (int k = 0; k < nc; ++k) o.capped[k] += w[k];
+                    spend(o.capped);
                     break;
                 }
                 ++bounces;
@@ -75,7 +79,7 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
                 for (int k = 0; k < nc; ++k) o.absorbed[k] += before[k] - (alive ? w[k] : 0.0);
                 if (!alive) break;
                 dir = normalize(next);
-                // Leave the facet on the side the ray goes, a few ulps of the coordinates away.
+                // Leave the facet on the side the ray goes, by Scene::epsilon() (one float ulp).
                 origin = h.position + (dot(dir, h.normal) >= 0 ? eps : -eps) * h.normal;
             }
         }
