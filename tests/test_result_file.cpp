@@ -312,11 +312,33 @@ TEST_CASE("gonio run traces, compares with the model, and writes the simulation"
     const Run cmp = run_gonio(d, "compare out.h5");
     CHECK(cmp.code == 0);
     CHECK(cmp.out.find("sim_L1") != std::string::npos);
-    // Clean failures before any tracing: an untraceable material, an unwritable output.
-    const Run diel =
-        run_gonio(d, "run r.toml -o x.h5 --set material.type=dielectric --set material.eta=1.5");
-    CHECK(diel.code == 2);
-    CHECK(diel.err.find("\"dielectric\" cannot be traced yet") != std::string::npos);
+    CHECK(s.cases[0].albedos.count("transmitted_albedo") == 0); // opaque: no lower sensor
+    {
+        // A dielectric: the lower sensor and transmitted orders appear, R + T = 1.
+        const Run diel = run_gonio(d, "run r.toml -o diel.h5 -q --cache-dir cache "
+                                      "--set material.type=dielectric --set material.eta=1.5");
+        REQUIRE(diel.code == 0);
+        const ResultSummary t = read_result_summary((d / "diel.h5").string());
+        const auto& a = t.cases[0].albedos;
+        for (const char* k : {"t1_albedo", "t2_albedo", "t2plus_albedo", "transmitted_albedo"})
+            REQUIRE(a.count(k) == 1);
+        for (size_t i = 0; i < 2; ++i) {
+            CHECK(a.at("linf_albedo")[i] + a.at("transmitted_albedo")[i] ==
+                  doctest::Approx(1.0).epsilon(1e-9));
+            CHECK(a.at("transmitted_albedo")[i] > 0.8);
+        }
+        h5::Handle f(H5Fopen((d / "diel.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT),
+                     H5Fclose, "open");
+        h5::Handle g(H5Gopen2(f, "r", H5P_DEFAULT), H5Gclose, "group");
+        std::vector<hsize_t> dims;
+        h5::read_doubles(g, "btdf", &dims);
+        CHECK(dims == std::vector<hsize_t>{2, 1, 4, 145, 1});
+    }
+    // Clean failures before any tracing: an unreadable surface file, an unwritable output.
+    const Run nosurface =
+        run_gonio(d, "run r.toml -o x.h5 --cache-dir cache --set surface.input=nothere.exr");
+    CHECK(nosurface.code == 2);
+    CHECK(nosurface.err.find("key 'surface.input': cannot open height map") != std::string::npos);
     const Run unwritable = run_gonio(d, "run r.toml -o /nonexistent/dir/x.h5 --cache-dir cache");
     CHECK(unwritable.code == 1);
     CHECK(unwritable.err.find("/nonexistent/dir/x.h5") != std::string::npos);

@@ -16,14 +16,26 @@
 
 namespace gonio {
 
+namespace {
+// What the case's facets do, as the parts traced separately: one material, except a dispersive
+// dielectric, whose channels refract apart and are traced one by one.
+std::vector<std::unique_ptr<Material>> facet_materials(const CaseConfig& c) {
+    std::vector<std::unique_ptr<Material>> parts;
+    if (c.material_type == "lambertian")
+        parts.push_back(std::make_unique<LambertianFacet>(c.albedo));
+    else if (c.material_type == "dielectric")
+        for (int k = 0; k < c.fresnel.channels(); ++k)
+            parts.push_back(std::make_unique<DielectricFacet>(c.fresnel.dielectric_eta(k)));
+    else
+        parts.push_back(std::make_unique<SpecularReflector>(c.fresnel));
+    return parts;
+}
+} // namespace
+
 int run_run_command(const RunOptions& o) {
     const Config cfg = load_config(o.config, o.overrides); // throws ConfigError
     for (size_t k = 0; k < cfg.cases.size(); ++k) {
         const std::string& type = cfg.cases[k].material_type;
-        if (type == "dielectric")
-            throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].material.type",
-                              "\"dielectric\" cannot be traced yet; gonio run traces \"mirror\", "
-                              "\"conductor\", \"schlick\" and \"lambertian\" facets");
         if (type == "lambertian" && cfg.cases[k].evaluate_model)
             throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].model.evaluate",
                               "Model L1 is the specular microfacet BRDF; for lambertian facets set "
@@ -39,8 +51,8 @@ int run_run_command(const RunOptions& o) {
     long long total = 0, done = 0;
     for (const auto& c : cfg.cases) total += c.theta_i_deg.size() * c.phi_i_deg.size();
     if (!o.quiet)
-        std::printf("%-20s %7s %7s %10s %10s %10s %10s %9s\n", "case", "theta_i", "phi_i", "L1",
-                    "model_L1", "rel_diff", "L2+", "lost");
+        std::printf("%-20s %7s %7s %10s %10s %10s %10s %10s %9s\n", "case", "theta_i", "phi_i",
+                    "L1", "model_L1", "rel_diff", "L2+", "T", "lost");
     for (size_t ci = 0; ci < cfg.cases.size(); ++ci) {
         const CaseConfig& c = cfg.cases[ci];
         const auto ndf = make_ndf(c.ndf);
@@ -50,14 +62,12 @@ int run_run_command(const RunOptions& o) {
             std::fprintf(stderr, "gonio: warning: %s\n", origin.warning.c_str());
         const Scene scene(surface); // one surface per case: sweeps never regenerate it
         const BeckersSensor sensor(c.sensor_cells);
-        std::unique_ptr<Material> material_ptr;
-        if (c.material_type == "lambertian")
-            material_ptr = std::make_unique<LambertianFacet>(c.albedo);
-        else
-            material_ptr = std::make_unique<SpecularReflector>(c.fresnel);
-        const Material& material = *material_ptr;
+        const auto materials = facet_materials(c);
+        std::vector<const Material*> parts;
+        for (const auto& m : materials) parts.push_back(m.get());
+        const bool transmits = materials[0]->transmits();
         const MicrofacetModel model(*ndf, c.fresnel, c.masking);
-        const int nc = material.channels();
+        const int nc = c.channels();
         SimulationResult sim;
         sim.orders = c.orders + 1;
         sim.surface = origin.loaded ? c.surface.input : origin.cache_path;
@@ -78,16 +88,18 @@ int run_run_command(const RunOptions& o) {
                 st.seed = cfg.seed;
                 st.stream =
                     (std::uint64_t(ci) << 40) ^ (std::uint64_t(ti) << 20) ^ std::uint64_t(pi);
-                const TraceResult r = trace_incidence(scene, material, sensor, wi, st);
-                sim.energy.insert(sim.energy.end(), r.energy.begin(), r.energy.end());
-                sim.order_energy.insert(sim.order_energy.end(), r.ledger.reflected.begin(),
-                                        r.ledger.reflected.end());
-                sim.absorbed.insert(sim.absorbed.end(), r.ledger.absorbed.begin(),
-                                    r.ledger.absorbed.end());
-                sim.capped.insert(sim.capped.end(), r.ledger.capped.begin(), r.ledger.capped.end());
-                sim.lost.insert(sim.lost.end(), r.ledger.lost.begin(), r.ledger.lost.end());
-                sim.unaccounted.insert(sim.unaccounted.end(), r.ledger.unaccounted.begin(),
-                                       r.ledger.unaccounted.end());
+                const TraceResult r = trace_incidence(scene, parts, sensor, wi, st);
+                auto append = [](std::vector<double>& to, const std::vector<double>& v) {
+                    to.insert(to.end(), v.begin(), v.end());
+                };
+                append(sim.energy, r.energy);
+                append(sim.order_energy, r.ledger.reflected);
+                append(sim.transmitted, r.transmitted);
+                append(sim.transmitted_order_energy, r.ledger.transmitted);
+                append(sim.absorbed, r.ledger.absorbed);
+                append(sim.capped, r.ledger.capped);
+                append(sim.lost, r.ledger.lost);
+                append(sim.unaccounted, r.ledger.unaccounted);
                 sim.rays.push_back(double(r.rays));
                 sim.segments.push_back(double(r.segments));
                 sim.seconds.push_back(r.seconds);
@@ -117,7 +129,16 @@ int run_run_command(const RunOptions& o) {
                             std::printf(" %10.6f %+10.4f", albedo[k], (l1 - albedo[k]) / albedo[k]);
                         else
                             std::printf(" %10s %10s", "-", "-");
-                        std::printf(" %10.6f %9.2e\n", l2plus, r.ledger.lost[k]);
+                        std::printf(" %10.6f", l2plus);
+                        if (transmits) {
+                            double t = 0;
+                            for (int order = 0; order < sim.orders; ++order)
+                                t += r.ledger.transmitted[size_t(order) * nc + k];
+                            std::printf(" %10.6f", t);
+                        } else {
+                            std::printf(" %10s", "-");
+                        }
+                        std::printf(" %9.2e\n", r.ledger.lost[k]);
                     }
                 }
             }

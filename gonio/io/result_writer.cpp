@@ -221,60 +221,77 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
                               "bounce order; the last one holds every order from it up", true);
     h5::write_int_attribute(g.order, "overflow_order", static_cast<long long>(no));
 
-    // BRDF per order: energy over the cell's projected solid angle.
-    std::vector<double> brdf(sim.energy.size());
-    for (size_t k = 0; k < brdf.size(); ++k)
-        brdf[k] =
-            sim.energy[k] / sensor.cell(static_cast<int>((k / nc) % ncell)).projected_solid_angle;
-    {
-        h5::Handle d = h5::write_dataset(g.group, "brdf", {nt, np, no, ncell, nc},
-                                         {1, 1, no, ncell, nc}, brdf.data(), "1/sr",
-                                         "simulated BRDF per bounce order, cell averages");
+    const size_t maps = nt * np;
+    // One side of the sample (reflection on the upper sensor, transmission on the lower one): the
+    // distribution per order (energy over the cell's projected solid angle, the same for a cell
+    // and its mirror image), the first order, the higher orders and all orders, and their albedos.
+    struct SideNames {
+        const char *dist, *energy, *first, *higher, *all, *a1, *a2, *a2plus, *aall, *what;
+    };
+    auto write_side = [&](const SideNames& n, const std::vector<double>& energy,
+                          const std::vector<double>& order_energy) {
+        std::vector<double> dist(energy.size());
+        for (size_t k = 0; k < dist.size(); ++k)
+            dist[k] =
+                energy[k] / sensor.cell(static_cast<int>((k / nc) % ncell)).projected_solid_angle;
+        const std::string what = n.what;
+        h5::Handle d = h5::write_dataset(g.group, n.dist, {nt, np, no, ncell, nc},
+                                         {1, 1, no, ncell, nc}, dist.data(), "1/sr",
+                                         "simulated " + what + " per bounce order, cell averages");
         g.attach_incidence(d);
         h5::check(H5DSattach_scale(d, g.order, 2), "attach order");
         g.attach_cells(d, 3);
         g.attach_channels(d, 4);
         h5::Handle e = h5::write_dataset(
-            g.group, "energy", {nt, np, no, nc}, {1, 1, no, nc}, sim.order_energy.data(), "1",
-            "fraction of the incident power reflected per bounce order");
+            g.group, n.energy, {nt, np, no, nc}, {1, 1, no, nc}, order_energy.data(), "1",
+            "fraction of the incident power per bounce order (" + what + ")");
         g.attach_incidence(e);
         h5::check(H5DSattach_scale(e, g.order, 2), "attach order");
         g.attach_channels(e, 3);
-    }
-    // L1, L2+ = L-infinity - L1, L-infinity, and their albedos.
-    const size_t maps = nt * np;
-    std::vector<double> l1(maps * ncell * nc), linf(maps * ncell * nc), l2plus(maps * ncell * nc);
-    std::vector<double> a1(maps * nc, 0.0), a2(maps * nc, 0.0), ainf(maps * nc, 0.0),
-        a2plus(maps * nc, 0.0);
-    for (size_t m = 0; m < maps; ++m)
-        for (size_t o = 0; o < no; ++o)
-            for (size_t c2 = 0; c2 < ncell * nc; ++c2) {
-                const double f = brdf[(m * no + o) * ncell * nc + c2];
-                if (o == 0) l1[m * ncell * nc + c2] = f;
-                linf[m * ncell * nc + c2] += f;
-            }
-    for (size_t k = 0; k < l1.size(); ++k) l2plus[k] = linf[k] - l1[k];
-    for (size_t m = 0; m < maps; ++m)
-        for (size_t o = 0; o < no; ++o)
-            for (size_t k = 0; k < nc; ++k) {
-                const double e = sim.order_energy[(m * no + o) * nc + k];
-                ainf[m * nc + k] += e;
-                if (o == 0) a1[m * nc + k] = e;
-                if (o == 1) a2[m * nc + k] = e;
-                if (o >= 1) a2plus[m * nc + k] += e;
-            }
-    g.per_cell("brdf_l1", l1, "1/sr", "simulated single-bounce BRDF (L1)");
-    g.per_cell("brdf_l2plus", l2plus, "1/sr", "simulated multiple-bounce BRDF (L2+ = Linf - L1)");
-    g.per_cell("brdf_linf", linf, "1/sr", "simulated BRDF, all orders (Linf)");
-    g.per_incidence("l1_albedo", a1, "1", "simulated L1 albedo");
-    g.per_incidence("l2_albedo", a2, "1", "simulated second-order albedo");
-    g.per_incidence("l2plus_albedo", a2plus, "1", "simulated L2+ albedo");
-    g.per_incidence("linf_albedo", ainf, "1", "simulated Linf albedo (all reflected light)");
+        std::vector<double> first(maps * ncell * nc), all(maps * ncell * nc, 0.0),
+            higher(maps * ncell * nc);
+        std::vector<double> a1(maps * nc, 0.0), a2(maps * nc, 0.0), aall(maps * nc, 0.0),
+            a2plus(maps * nc, 0.0);
+        for (size_t m = 0; m < maps; ++m)
+            for (size_t o = 0; o < no; ++o)
+                for (size_t c2 = 0; c2 < ncell * nc; ++c2) {
+                    const double f = dist[(m * no + o) * ncell * nc + c2];
+                    if (o == 0) first[m * ncell * nc + c2] = f;
+                    all[m * ncell * nc + c2] += f;
+                }
+        for (size_t k = 0; k < first.size(); ++k) higher[k] = all[k] - first[k];
+        for (size_t m = 0; m < maps; ++m)
+            for (size_t o = 0; o < no; ++o)
+                for (size_t k = 0; k < nc; ++k) {
+                    const double v = order_energy[(m * no + o) * nc + k];
+                    aall[m * nc + k] += v;
+                    if (o == 0) a1[m * nc + k] = v;
+                    if (o == 1) a2[m * nc + k] = v;
+                    if (o >= 1) a2plus[m * nc + k] += v;
+                }
+        g.per_cell(n.first, first, "1/sr", "simulated single-bounce " + what);
+        g.per_cell(n.higher, higher, "1/sr", "simulated multiple-bounce " + what);
+        g.per_cell(n.all, all, "1/sr", "simulated " + what + ", all orders");
+        g.per_incidence(n.a1, a1, "1", "simulated single-bounce albedo (" + what + ")");
+        g.per_incidence(n.a2, a2, "1", "simulated second-order albedo (" + what + ")");
+        g.per_incidence(n.a2plus, a2plus, "1", "simulated multiple-bounce albedo (" + what + ")");
+        g.per_incidence(n.aall, aall, "1", "simulated albedo, all orders (" + what + ")");
+        return a1;
+    };
+    const std::vector<double> a1 =
+        write_side({"brdf", "energy", "brdf_l1", "brdf_l2plus", "brdf_linf", "l1_albedo",
+                    "l2_albedo", "l2plus_albedo", "linf_albedo", "BRDF"},
+                   sim.energy, sim.order_energy);
+    if (!sim.transmitted.empty())
+        write_side({"btdf", "transmitted_energy", "btdf_t1", "btdf_t2plus", "btdf_tinf",
+                    "t1_albedo", "t2_albedo", "t2plus_albedo", "transmitted_albedo",
+                    "BTDF, lower sensor (cell k mirrors upper cell k)"},
+                   sim.transmitted, sim.transmitted_order_energy);
     g.per_incidence("ledger_absorbed", sim.absorbed, "1", "absorbed by the facets");
     g.per_incidence("ledger_capped", sim.capped, "1", "cut by the bounce cap");
     g.per_incidence("ledger_lost", sim.lost, "1", "lost (crack or endless ray): should be 0");
     g.per_incidence("ledger_unaccounted", sim.unaccounted, "1",
-                    "1 - (reflected + absorbed + capped + lost): zero to round-off");
+                    "1 - (reflected + transmitted + absorbed + capped + lost): zero to round-off");
     for (auto [name, v, what] : {std::tuple<const char*, const std::vector<double>*, const char*>{
                                      "rays", &sim.rays, "rays traced"},
                                  {"segments", &sim.segments, "ray segments (rtcIntersect1 calls)"},

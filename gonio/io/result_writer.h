@@ -24,6 +24,8 @@ struct SimulationResult {
     int orders = 0;                   // K + 1: orders 1..K, then "K+1 or more"
     std::vector<double> energy;       // [theta_i][phi_i][order][cell][channel]
     std::vector<double> order_energy; // [theta_i][phi_i][order][channel]
+    // The same on the lower sensor, for transmissive materials (empty otherwise).
+    std::vector<double> transmitted, transmitted_order_energy;
     std::vector<double> absorbed, capped, lost, unaccounted; // [theta_i][phi_i][channel]
     std::vector<double> rays, segments, seconds;             // [theta_i][phi_i]
     std::string surface; // where the surface came from (cache path, input)
@@ -39,7 +41,8 @@ class ResultWriter {
 
     void write_run(const Config& cfg, const std::string& command_line);
     void write_model_case(const CaseConfig& c, const BeckersSensor& sensor, const ModelL1Result& r);
-    // The simulated BRDF per order, L1 / L2+ / L-infinity, the ledger, and, when `model` is given,
+    // The simulated BRDF per order, L1 / L2+ / L-infinity (and the BTDF of a transmissive
+    // material on the lower sensor), the ledger, and, when `model` is given,
     // Model L1 on the same cells with the comparison (albedos, relative difference, per-cell
     // relative L1 distance, ratio map).
     void write_simulation_case(const CaseConfig& c, const BeckersSensor& sensor,

@@ -19,6 +19,8 @@ class FresnelTerm {
 
     Kind kind() const { return kind_; }
     int channels() const { return channels_; }
+    // The real relative index of channel c (dielectric only).
+    double dielectric_eta(int c) const { return real_.at(size_t(c)); }
     // Reflectance for cos_i = i.m in [0, 1], one value per channel into out[0..channels).
     void eval(double cos_i, double* out) const;
     std::string describe() const;

@@ -1,5 +1,7 @@
 #include "gonio/material/material.h"
 
+#include "gonio/material/fresnel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -33,6 +35,26 @@ bool LambertianFacet::scatter(const Vec3&, const Vec3& m, Rng& rng, Vec3& wo,
                  z = std::sqrt(std::max(0.0, 1 - r * r));
     wo = normalize(x * t + y * u + z * m);
     for (int k = 0; k < channels(); ++k) weight[k] *= albedo_[k];
+    return true;
+}
+
+bool refract(const Vec3& wi, const Vec3& n, double eta, Vec3& wt) {
+    // Snell's law in vector form (Walter et al. 2007, Eq. 40, with eta = n_t / n_i).
+    const double cos_i = dot(wi, n);
+    const double sin2_t = std::max(0.0, 1.0 - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1.0) return false;
+    const double cos_t = std::sqrt(1.0 - sin2_t);
+    wt = normalize((-1.0 / eta) * wi + (cos_i / eta - cos_t) * n);
+    return true;
+}
+
+bool DielectricFacet::scatter(const Vec3& wi, const Vec3& m, Rng& rng, Vec3& wo, double*) const {
+    // From below, the interface is seen with the normal -m and the relative index 1 / eta.
+    const bool above = dot(wi, m) >= 0;
+    const Vec3 n = above ? m : -m;
+    const double eta = above ? eta_ : 1.0 / eta_;
+    const double F = fresnel_dielectric(std::abs(dot(wi, m)), eta); // M18 Eq. 8; 1 under TIR
+    if (rng.uniform() < F || !refract(wi, n, eta, wo)) wo = reflect(wi, m);
     return true;
 }
 

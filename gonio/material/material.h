@@ -1,8 +1,10 @@
 #pragma once
 // What one microfacet does to a ray, per spectral channel. Directions point away from the facet:
 // `wi` towards where the ray came from, the returned direction where it goes next.
-// Implemented here: specular reflectors (perfect mirror, conductor, Schlick). Dielectrics with
-// transmission, Lambertian and interfaced Lambertian facets plug in behind the same interface.
+// Implemented here: specular reflectors (perfect mirror, conductor, Schlick), dielectric
+// facets with transmission, Lambertian facets. Interfaced Lambertian facets plug in behind the same
+// interface. The facet normal m always faces the upper side (+z); a ray may meet it from below
+// only inside a transmissive material (wi.m < 0).
 #include "core/math.h"
 #include "core/random.h"
 #include "gonio/material/fresnel_term.h"
@@ -19,6 +21,8 @@ class Material {
     // Returns false if the ray ends at this facet (absorbed).
     virtual bool scatter(const Vec3& wi, const Vec3& m, Rng& rng, Vec3& wo,
                          double* weight) const = 0;
+    // True if rays may cross the surface (then the lower sensor and transmitted orders exist).
+    virtual bool transmits() const { return false; }
 };
 
 // Mirror reflection about the facet, weighted by its Fresnel reflectance per channel.
@@ -43,5 +47,26 @@ class LambertianFacet final : public Material {
   private:
     std::vector<double> albedo_;
 };
+
+// A smooth dielectric interface of real relative index eta = n_below / n_above, one channel:
+// reflection with the exact Fresnel probability [M18 Eq. 8], otherwise refraction by Snell's law.
+// The choice is stochastic, so the ray's weight is unchanged and R + T = 1 holds ray by ray. The
+// weight is power, not radiance: no eta^2 factor on refraction. A ray inside the material meets
+// facets from below (wi.m < 0), where the relative index is 1 / eta and total internal
+// reflection can occur.
+class DielectricFacet final : public Material {
+  public:
+    explicit DielectricFacet(double eta) : eta_(eta) {}
+    int channels() const override { return 1; }
+    bool transmits() const override { return true; }
+    bool scatter(const Vec3& wi, const Vec3& m, Rng& rng, Vec3& wo, double* weight) const override;
+
+  private:
+    double eta_;
+};
+
+// Refraction of wi (pointing away from the interface, on the side of n) through an interface of
+// relative index eta = n_transmitted / n_incident. Returns false on total internal reflection.
+bool refract(const Vec3& wi, const Vec3& n, double eta, Vec3& wt);
 
 } // namespace gonio

@@ -11,7 +11,7 @@ namespace {
 // What one block of rays produced: its exits, in ray order, and its ledger sums. Blocks are
 // merged in block order, so the sums do not depend on which thread ran which block.
 struct BlockOutput {
-    std::vector<int> bin;       // order * cells + cell
+    std::vector<int> bin;       // order * cells + cell, + orders * cells when transmitted
     std::vector<double> weight; // channels per exit
     std::vector<double> absorbed, capped, lost;
     long long segments = 0;
@@ -30,6 +30,7 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
     const double power = 1.0 / double(rays);
     const double L = scene.period(), eps = scene.epsilon();
     const Vec3 down = -wi;
+    const bool transmits = material.transmits();
 
     std::vector<BlockOutput> out(blocks);
     tbb::parallel_for((long long)0, blocks, [&](long long b) {
@@ -46,25 +47,29 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
             Vec3 dir = down;
             std::fill(w.begin(), w.end(), power);
             int bounces = 0;
+            bool below = false; // travelling under the surface (transmissive materials only)
             // The ray's remaining power ends in a ledger entry.
             auto spend = [&](std::vector<double>& entry) {
                 for (int k = 0; k < nc; ++k) entry[k] += w[k];
             };
             for (;;) {
-                const SurfaceHit h = scene.trace(origin, dir);
+                const SurfaceHit h = scene.trace(origin, dir, below);
                 o.segments += h.wraps + 1;
-                if (h.kind == SurfaceHit::escaped_up) {
-                    // A beam aimed down cannot leave before a bounce; keep the ledger honest.
-                    if (bounces == 0) {
+                if (h.kind == SurfaceHit::escaped_up || h.kind == SurfaceHit::escaped_down) {
+                    // A ray leaves for good only upwards from above and downwards from below; and
+                    // a beam aimed down cannot leave before a bounce. Anything else is a failure.
+                    const bool up = h.kind == SurfaceHit::escaped_up;
+                    if (bounces == 0 || up == below) {
                         spend(o.lost);
                         break;
                     }
                     const int order = std::min(bounces, orders) - 1;
-                    o.bin.push_back(order * cells + sensor.lookup(dir));
+                    o.bin.push_back(up ? order * cells + sensor.lookup(dir)
+                                       : (orders + order) * cells + sensor.lookup_lower(dir));
                     o.weight.insert(o.weight.end(), w.begin(), w.end());
                     break;
                 }
-                if (h.kind != SurfaceHit::hit) { // down through an opaque surface, or endless
+                if (h.kind != SurfaceHit::hit) { // wrapped without end
                     spend(o.lost);
                     break;
                 }
@@ -80,7 +85,9 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
                 if (!alive) break;
                 dir = normalize(next);
                 // Leave the facet on the side the ray goes, by Scene::epsilon() (one float ulp).
-                origin = h.position + (dot(dir, h.normal) >= 0 ? eps : -eps) * h.normal;
+                const double along = dot(dir, h.normal);
+                if (transmits) below = along < 0;
+                origin = h.position + (along >= 0 ? eps : -eps) * h.normal;
             }
         }
     });
@@ -88,15 +95,20 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
     TraceResult res;
     res.orders = orders, res.cells = cells, res.channels = nc, res.rays = rays;
     res.energy.assign(size_t(orders) * cells * nc, 0.0);
+    if (transmits) res.transmitted.assign(size_t(orders) * cells * nc, 0.0);
     EnergyLedger& led = res.ledger;
     led.reflected.assign(size_t(orders) * nc, 0.0);
+    if (transmits) led.transmitted.assign(size_t(orders) * nc, 0.0);
     led.absorbed.assign(nc, 0.0), led.capped.assign(nc, 0.0), led.lost.assign(nc, 0.0);
     for (const BlockOutput& o : out) { // block order: deterministic
         for (size_t e = 0; e < o.bin.size(); ++e) {
-            const int order = o.bin[e] / cells;
+            const bool up = o.bin[e] < orders * cells;
+            const int bin = up ? o.bin[e] : o.bin[e] - orders * cells, order = bin / cells;
+            double* energy = (up ? res.energy : res.transmitted).data();
+            double* sum = (up ? led.reflected : led.transmitted).data();
             for (int k = 0; k < nc; ++k) {
-                res.energy[size_t(o.bin[e]) * nc + k] += o.weight[e * nc + k];
-                led.reflected[size_t(order) * nc + k] += o.weight[e * nc + k];
+                energy[size_t(bin) * nc + k] += o.weight[e * nc + k];
+                sum[size_t(order) * nc + k] += o.weight[e * nc + k];
             }
         }
         for (int k = 0; k < nc; ++k)
@@ -106,11 +118,49 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
     }
     led.unaccounted.assign(nc, 1.0);
     for (int k = 0; k < nc; ++k) {
-        for (int order = 0; order < orders; ++order)
+        for (int order = 0; order < orders; ++order) {
             led.unaccounted[k] -= led.reflected[size_t(order) * nc + k];
+            if (transmits) led.unaccounted[k] -= led.transmitted[size_t(order) * nc + k];
+        }
         led.unaccounted[k] -= led.absorbed[k] + led.capped[k] + led.lost[k];
     }
     res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return res;
+}
+
+TraceResult trace_incidence(const Scene& scene, const std::vector<const Material*>& parts,
+                            const BeckersSensor& sensor, const Vec3& wi, const TraceSettings& st) {
+    if (parts.size() == 1) return trace_incidence(scene, *parts[0], sensor, wi, st);
+    std::vector<TraceResult> r;
+    for (size_t p = 0; p < parts.size(); ++p) {
+        TraceSettings part = st;
+        part.stream ^= std::uint64_t(p + 1) << 56; // streams apart from every case and incidence
+        r.push_back(trace_incidence(scene, *parts[p], sensor, wi, part));
+    }
+    TraceResult res;
+    res.orders = r[0].orders, res.cells = r[0].cells, res.rays = r[0].rays;
+    for (const TraceResult& p : r) {
+        res.channels += p.channels, res.segments += p.segments, res.seconds += p.seconds;
+    }
+    // [outer][channel] arrays: concatenate the parts' channels within every outer index.
+    auto concat = [&](auto get) {
+        std::vector<double> out;
+        const size_t outer = get(r[0]).size() / size_t(r[0].channels);
+        out.reserve(outer * size_t(res.channels));
+        for (size_t i = 0; i < outer; ++i)
+            for (const TraceResult& p : r) {
+                const std::vector<double>& v = get(p);
+                out.insert(out.end(), v.begin() + i * p.channels, v.begin() + (i + 1) * p.channels);
+            }
+        return out;
+    };
+    res.energy = concat([](const TraceResult& p) -> const auto& { return p.energy; });
+    res.transmitted = concat([](const TraceResult& p) -> const auto& { return p.transmitted; });
+    for (auto entry :
+         {&EnergyLedger::reflected, &EnergyLedger::transmitted, &EnergyLedger::absorbed,
+          &EnergyLedger::capped, &EnergyLedger::lost, &EnergyLedger::unaccounted})
+        res.ledger.*entry =
+            concat([entry](const TraceResult& p) -> const auto& { return p.ledger.*entry; });
     return res;
 }
 

@@ -21,8 +21,8 @@ struct SurfaceHit {
     Vec3 position;       // on the surface, in the patch [0, L)^2 (hit only)
     Vec3 normal;         // the facet's unit normal, facing +z (hit only)
     int wraps = 0;       // side walls crossed
-    int reentries = 0;   // facets met from below and passed (rounding at concave edges)
-    bool lifted = false; // the origin, as Embree sees it in float, lay below the surface
+    int reentries = 0;   // facets met from the wrong side and passed (rounding at sharp edges)
+    bool lifted = false; // the origin, as Embree sees it in float, lay on the wrong side
 };
 
 class Scene {
@@ -40,8 +40,11 @@ class Scene {
 
     // Follows the ray from `origin` (inside the box or on its top plane) along unit `dir` to the
     // first facet it hits, wrapping through the side walls, or to where it leaves the box.
-    // max_wraps bounds near-horizontal rays (kind = lost when exceeded).
-    SurfaceHit trace(Vec3 origin, const Vec3& dir, int max_wraps = 1 << 20) const;
+    // `below`: the ray travels under the surface (inside a transmissive material), so it meets
+    // facets from below and leaves through the bottom plane. max_wraps bounds near-horizontal
+    // rays (kind = lost when exceeded).
+    SurfaceHit trace(Vec3 origin, const Vec3& dir, bool below = false,
+                     int max_wraps = 1 << 20) const;
 
     // One bare rtcIntersect1 call (for the benchmark): the hit distance, or infinity.
     float intersect(const Vec3& origin, const Vec3& dir, float tfar) const;
