@@ -5,13 +5,15 @@
 #include "gonio/material/fresnel_term.h"
 #include "heightfield/ndf/ndf.h"
 
+#include <utility>
+
 namespace gonio {
 
 class MicrofacetModel {
   public:
-    // Keeps references: ndf and fresnel must outlive the model.
-    MicrofacetModel(const Ndf& ndf, const FresnelTerm& fresnel, MaskingForm masking)
-        : ndf_(ndf), fresnel_(fresnel), masking_(masking) {}
+    // Keeps a reference to ndf, which must outlive the model; copies the (small) Fresnel term.
+    MicrofacetModel(const Ndf& ndf, FresnelTerm fresnel, MaskingForm masking)
+        : ndf_(ndf), fresnel_(std::move(fresnel)), masking_(masking) {}
 
     int channels() const { return fresnel_.channels(); }
     const Ndf& ndf() const { return ndf_; }
@@ -24,7 +26,7 @@ class MicrofacetModel {
 
   private:
     const Ndf& ndf_;
-    const FresnelTerm& fresnel_;
+    FresnelTerm fresnel_;
     MaskingForm masking_;
 };
 
