@@ -4,7 +4,7 @@
 // primary rays and their first reflections, as the pipeline issues them. Segments per second,
 // single- and two-threaded, and the ratio. Not a test: numbers depend on the machine.
 //
-// Usage: trace_bench [size=1024] [rays=2097152] [theta_i_deg=60]
+// Usage: trace_bench [size=1024] [rays=2097152] [theta_i_deg=60] [threads=both|1|2]
 #include "gonio/trace/gonioreflectometer.h"
 #include "heightfield/generate.h"
 #include "heightfield/ndf/beckmann.h"
@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
     const int n = argc > 1 ? std::atoi(argv[1]) : 1024;
     const long long rays = argc > 2 ? std::atoll(argv[2]) : 2097152;
     const double theta = argc > 3 ? std::atof(argv[3]) : 60.0;
+    const std::string only = argc > 4 ? argv[4] : "both"; // one thread count, e.g. for perf
     SurfaceSpec spec;
     spec.size = n;
     const HeightField surface = generate_surface(Beckmann(0.75), spec, 2);
@@ -53,6 +55,7 @@ int main(int argc, char** argv) {
         theta, side * side, org.size());
     std::printf("%8s %16s %16s %8s\n", "threads", "pipeline_Mseg/s", "bare_Mseg/s", "ratio");
     for (int threads : {1, 2}) {
+        if (only != "both" && only != std::to_string(threads)) continue;
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
         TraceSettings st;
         st.rays = rays;

@@ -37,13 +37,13 @@ struct HeightField {
     }
     static Vec3 normal_of_slopes(double sp, double sq) { return normalize(Vec3{-sp, -sq, 1.0}); }
 
-    // The triangulated surface at (x, y) in world units (any x, y: the patch repeats): its height
-    // and the slopes of the triangle there, with the same split as the traced geometry.
-    double height_at(double x, double y, double* sp = nullptr, double* sq = nullptr) const {
-        const double gx = x / spacing, gy = y / spacing;
+    // The triangulated surface at grid coordinates (gx, gy) = (x, y) / spacing (any: the patch
+    // repeats), with the same split as the traced geometry: its height, and if asked the
+    // triangle's height differences per sample along x and y (its slopes times the spacing).
+    double height_at_grid(double gx, double gy, double* dx = nullptr, double* dy = nullptr) const {
         const double fx = std::floor(gx), fy = std::floor(gy);
         const double u = gx - fx, v = gy - fy;
-        // One wrap per axis (the hot path of ray tracing: no modulo per sample).
+        // One wrap per axis (no modulo per sample).
         const int x0 = wrap(int(fx)), y0 = wrap(int(fy));
         const int x1 = x0 + 1 == n ? 0 : x0 + 1, y1 = y0 + 1 == n ? 0 : y0 + 1;
         const float* r0 = &h[size_t(y0) * n];
@@ -51,14 +51,14 @@ struct HeightField {
         const double h00 = r0[x0], h10 = r0[x1], h01 = r1[x0], h11 = r1[x1];
         double a, b, z;
         if (u + v <= 1.0) { // triangle A: (x, y), (x+1, y), (x, y+1)
-            a = (h10 - h00) / spacing, b = (h01 - h00) / spacing;
-            z = h00 + (u * a + v * b) * spacing;
+            a = h10 - h00, b = h01 - h00;
+            z = h00 + (u * a + v * b);
         } else { // triangle B: (x+1, y+1), (x, y+1), (x+1, y)
-            a = (h11 - h01) / spacing, b = (h11 - h10) / spacing;
-            z = h11 - ((1 - u) * a + (1 - v) * b) * spacing;
+            a = h11 - h01, b = h11 - h10;
+            z = h11 - ((1 - u) * a + (1 - v) * b);
         }
-        if (sp) *sp = a;
-        if (sq) *sq = b;
+        if (dx) *dx = a;
+        if (dy) *dy = b;
         return z;
     }
 };

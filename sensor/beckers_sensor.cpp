@@ -58,23 +58,65 @@ BeckersSensor::BeckersSensor(int cells) : n_(cells) {
             cells_.push_back(c);
         }
     }
+    // Lookup tables: the ring of each of 4 x rings buckets of u, and each cell's first boundary.
+    const int buckets = 4 * ring_count();
+    bucket_scale_ = double(buckets) / n_;
+    for (int b = 0, ring = 0; b < buckets; ++b) {
+        const double u = b / bucket_scale_;
+        while (ring + 1 < ring_count() && u >= ring_first_[ring + 1]) ++ring;
+        ring_of_bucket_.push_back(ring);
+    }
+    for (int r = 0; r < ring_count(); ++r) ring_scale_.push_back(ring_cell_count(r) / kTwoPi);
+    for (const SensorCell& c : cells_) {
+        boundary_.push_back(std::cos(c.phi_min));
+        boundary_.push_back(std::sin(c.phi_min));
+    }
 }
 
+namespace {
+// atan2(y, x) in [0, 2 pi) to 1.7e-6 rad (an odd minimax polynomial of atan on [0, 1]); the
+// lookup decides exactly wherever that could matter.
+double approximate_phi(double x, double y) {
+    const double ax = std::abs(x), ay = std::abs(y);
+    const double hi = std::max(ax, ay), lo = std::min(ax, ay);
+    if (hi == 0) return 0;
+    const double a = lo / hi, s = a * a;
+    double r = a * (0.99997726 +
+                    s * (-0.33262347 +
+                         s * (0.19354346 + s * (-0.11643287 + s * (0.05265332 - s * 0.01172120)))));
+    if (ay > ax) r = 0.5 * kPi - r;
+    if (x < 0) r = kPi - r;
+    return y < 0 ? kTwoPi - r : r;
+}
+} // namespace
+
 int BeckersSensor::lookup(const Vec3& d) const {
-    // u = N (1 - cos theta) is the number of cells inside the cap through d.
+    // u = N (1 - cos theta) is the number of cells inside the cap through d; ring r holds u in
+    // [ring_first_[r], ring_first_[r+1]). The bucket gives a ring at most a few steps away.
     const double u = n_ * (1.0 - std::clamp(d.z, 0.0, 1.0));
-    // Ring r holds u in [ring_first_[r], ring_first_[r+1]); upper_bound finds the first cap
-    // boundary above u.
-    auto it = std::upper_bound(ring_first_.begin() + 1, ring_first_.end(), u,
-                               [](double value, int bound) { return value < bound; });
-    int ring = static_cast<int>(it - ring_first_.begin()) - 1;
-    ring = std::min(ring, ring_count() - 1);
-    const int count = ring_cell_count(ring);
-    if (count == 1) return ring_first_[ring];
-    const double phi = spherical_phi(d);
-    int j = static_cast<int>(phi * (count / kTwoPi));
-    j = std::clamp(j, 0, count - 1); // phi = 2 pi (after round-off) stays in the last cell
-    return ring_first_[ring] + j;
+    const int buckets = static_cast<int>(ring_of_bucket_.size());
+    int ring = ring_of_bucket_[std::min(static_cast<int>(u * bucket_scale_), buckets - 1)];
+    while (ring > 0 && u < ring_first_[ring]) --ring;
+    while (ring + 1 < ring_count() && u >= ring_first_[ring + 1]) ++ring;
+    const int first = ring_first_[ring], count = ring_cell_count(ring);
+    if (count == 1) return first;
+    if (count < 3) return first + std::min(int(spherical_phi(d) * (count / kTwoPi)), count - 1);
+    // The azimuth in cell widths. The estimate is within 1.7e-6 rad of atan2 (measured on 2e7
+    // directions): farther than kMargin from both boundaries, its cell is exact.
+    constexpr double kMargin = 1e-4; // rad
+    const double t = approximate_phi(d.x, d.y) * ring_scale_[ring];
+    int j = std::clamp(static_cast<int>(t), 0, count - 1);
+    const double frac = t - j, margin = kMargin * ring_scale_[ring];
+    if (frac > margin && frac < 1 - margin) return first + j;
+    // Near a boundary, decide exactly: d lies at or after the boundary of cell j
+    // (counter-clockwise, within half a turn) and before that of cell j + 1; phi = 2 pi wraps to
+    // 0. The estimate is off by at most one cell, so each loop runs at most once.
+    auto after = [&](int cell) {
+        return boundary_[2 * cell] * d.y - boundary_[2 * cell + 1] * d.x >= 0;
+    };
+    for (int guard = 0; guard < count && !after(first + j); ++guard) j = j == 0 ? count - 1 : j - 1;
+    for (int guard = 0; guard < count && j + 1 < count && after(first + j + 1); ++guard) ++j;
+    return first + j;
 }
 
 double BeckersSensor::ring_aspect_ratio(int ring) const {

@@ -8,7 +8,9 @@
 // number of cells inside the new cap, S_l = round(N (1 - cos theta_l)), and put the boundary
 // exactly where that cap holds S_l cells: cos theta_l = 1 - S_l / N. A cap of fewer than 7 cells
 // becomes one polar cell. Since the number of cells inside the cap of angle theta is
-// u = N (1 - cos theta), a direction's ring is found by a binary search on u: no trigonometry.
+// u = N (1 - cos theta), a direction's ring is found from u through a bucket table; its cell in
+// the ring from a fast azimuth estimate, decided by exact side tests against the cells' boundary
+// directions when it lies near one: no trigonometry, no search.
 //
 // The transmission sensor below the surface is the mirror image of this one through the plane
 // z = 0: cell c of the lower sensor holds the directions whose mirror image lies in cell c.
@@ -57,6 +59,10 @@ class BeckersSensor {
                                    // ring_first_[r] is also the cells inside the cap of ring r
     std::vector<double> ring_cos_; // cos of the outer boundary of cap r: 1 - ring_first_[r] / N
     std::vector<SensorCell> cells_;
+    std::vector<int> ring_of_bucket_; // ring holding u = b N / buckets, for b < buckets
+    double bucket_scale_ = 0;         // buckets / N
+    std::vector<double> ring_scale_;  // per ring: cells / (2 pi)
+    std::vector<double> boundary_;    // per cell: cos and sin of phi_min
 };
 
 } // namespace gonio

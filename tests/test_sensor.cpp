@@ -125,3 +125,35 @@ TEST_CASE("Beckers cell geometry round-trips through lookup, above and below") {
         CHECK(mismatches_lower == 0);
     }
 }
+
+TEST_CASE("Beckers lookup agrees with the cell bounds (trigonometric reference) everywhere") {
+    // The lookup estimates the azimuth with a polynomial and corrects the cell by exact side
+    // tests; the reference is atan2 against the cells' phi bounds and acos against theta bounds.
+    Rng rng{17, 0};
+    for (int n : {3, 7, 145, 3240, 10000, 250000}) {
+        CAPTURE(n);
+        const BeckersSensor s(n);
+        int outside = 0;
+        auto check = [&](const Vec3& d, double slack) {
+            const SensorCell& c = s.cell(s.lookup(d));
+            const double theta = spherical_theta(d), phi = spherical_phi(d);
+            const bool in_theta = theta >= c.theta_min - slack && theta <= c.theta_max + slack;
+            const bool in_phi = (phi >= c.phi_min - slack && phi <= c.phi_max + slack) ||
+                                (c.phi_min == 0 && phi >= kTwoPi - slack);
+            outside += !(in_theta && in_phi);
+        };
+        for (int k = 0; k < 200000; ++k) {
+            const double z = rng.uniform(), phi = kTwoPi * rng.uniform();
+            const double r = std::sqrt(1 - z * z);
+            check({r * std::cos(phi), r * std::sin(phi), z}, 1e-12);
+        }
+        // On and within a hair of every azimuthal boundary, at the ring's mid polar angle.
+        for (const SensorCell& c : s.cells())
+            for (double dphi : {-1e-9, 0.0, 1e-9}) {
+                const double z = std::cos(0.5 * (c.theta_min + c.theta_max)),
+                             r = std::sqrt(1 - z * z), phi = c.phi_min + dphi;
+                check({r * std::cos(phi), r * std::sin(phi), z}, 1e-12);
+            }
+        CHECK(outside == 0);
+    }
+}

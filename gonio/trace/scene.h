@@ -53,6 +53,8 @@ class Scene {
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     double period_ = 0, z_min_ = 0, z_max_ = 0, epsilon_ = 0;
+    double inv_spacing_ = 1;                     // for exact heights without a division
+    double border_lo_ = 0, border_hi_ = 0;       // the patch's inside, in float, nearest the border
     std::string error_;   // first error reported by Embree's callback
     HeightField surface_; // the exact triangulated surface, to keep ray origins outside it
 };
