@@ -41,14 +41,23 @@ struct HeightField {
     // repeats), with the same split as the traced geometry: its height, and if asked the
     // triangle's height differences per sample along x and y (its slopes times the spacing).
     double height_at_grid(double gx, double gy, double* dx = nullptr, double* dy = nullptr) const {
+        return triangulated_height(gx, gy, n, dx, dy, [this](int x, int y) {
+            return h[size_t(y == n ? 0 : y) * n + (x == n ? 0 : x)];
+        });
+    }
+
+    // The same over any storage of the n x n samples: sample(x, y) for x, y in [0, n], where n
+    // stands for 0 (so a buffer with the first row and column repeated can be read directly).
+    template <class Sample>
+    static double triangulated_height(double gx, double gy, int n, double* dx, double* dy,
+                                      const Sample& sample) {
         const double fx = std::floor(gx), fy = std::floor(gy);
         const double u = gx - fx, v = gy - fy;
-        // One wrap per axis (no modulo per sample).
-        const int x0 = wrap(int(fx)), y0 = wrap(int(fy));
-        const int x1 = x0 + 1 == n ? 0 : x0 + 1, y1 = y0 + 1 == n ? 0 : y0 + 1;
-        const float* r0 = &h[size_t(y0) * n];
-        const float* r1 = &h[size_t(y1) * n];
-        const double h00 = r0[x0], h10 = r0[x1], h01 = r1[x0], h11 = r1[x1];
+        int x0 = int(fx), y0 = int(fy); // one wrap per axis (no modulo on the hot path)
+        if (x0 < 0 || x0 >= n) x0 = ((x0 % n) + n) % n;
+        if (y0 < 0 || y0 >= n) y0 = ((y0 % n) + n) % n;
+        const double h00 = sample(x0, y0), h10 = sample(x0 + 1, y0);
+        const double h01 = sample(x0, y0 + 1), h11 = sample(x0 + 1, y0 + 1);
         double a, b, z;
         if (u + v <= 1.0) { // triangle A: (x, y), (x+1, y), (x, y+1)
             a = h10 - h00, b = h01 - h00;

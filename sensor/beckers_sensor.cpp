@@ -58,8 +58,9 @@ BeckersSensor::BeckersSensor(int cells) : n_(cells) {
             cells_.push_back(c);
         }
     }
-    // Lookup tables: the ring of each of 4 x rings buckets of u, and each cell's first boundary.
-    const int buckets = 4 * ring_count();
+    // Lookup tables: the ring of each bucket of u (one per unit up to 2^16 buckets), and each
+    // cell's first boundary.
+    const int buckets = std::min(n_, 1 << 16);
     bucket_scale_ = double(buckets) / n_;
     for (int b = 0, ring = 0; b < buckets; ++b) {
         const double u = b / bucket_scale_;
@@ -84,8 +85,9 @@ double approximate_phi(double x, double y) {
     double r = a * (0.99997726 +
                     s * (-0.33262347 +
                          s * (0.19354346 + s * (-0.11643287 + s * (0.05265332 - s * 0.01172120)))));
-    if (ay > ax) r = 0.5 * kPi - r;
-    if (x < 0) r = kPi - r;
+    // Octant unfolding as selects rather than branches: the signs are random in a tracer.
+    r = ay > ax ? 0.5 * kPi - r : r;
+    r = x < 0 ? kPi - r : r;
     return y < 0 ? kTwoPi - r : r;
 }
 } // namespace
@@ -96,6 +98,8 @@ int BeckersSensor::lookup(const Vec3& d) const {
     const double u = n_ * (1.0 - std::clamp(d.z, 0.0, 1.0));
     const int buckets = static_cast<int>(ring_of_bucket_.size());
     int ring = ring_of_bucket_[std::min(static_cast<int>(u * bucket_scale_), buckets - 1)];
+    // Ring boundaries are integers of u: with one bucket per unit of u (N <= 2^16) the bucket's
+    // ring is exact and these loops never run.
     while (ring > 0 && u < ring_first_[ring]) --ring;
     while (ring + 1 < ring_count() && u >= ring_first_[ring + 1]) ++ring;
     const int first = ring_first_[ring], count = ring_cell_count(ring);

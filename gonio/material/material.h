@@ -17,8 +17,9 @@ class Material {
   public:
     virtual ~Material() = default;
     virtual int channels() const = 0;
-    // Scatters at a facet of unit normal m; multiplies weight[0..channels) by the throughput.
-    // Returns false if the ray ends at this facet (absorbed).
+    // Scatters at a facet of unit normal m into the unit direction wo; multiplies
+    // weight[0..channels) by the throughput. Returns false if the ray ends at this facet
+    // (absorbed).
     virtual bool scatter(const Vec3& wi, const Vec3& m, Rng& rng, Vec3& wo,
                          double* weight) const = 0;
     // True if rays may cross the surface (then the lower sensor and transmitted orders exist).

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 namespace gonio {
 
@@ -12,6 +13,7 @@ namespace {
 // merged in block order, so the sums do not depend on which thread ran which block.
 struct BlockOutput {
     std::vector<int> bin;       // order * cells + cell, + orders * cells when transmitted
+    std::vector<Vec3> exit;     // exit directions, binned once the block is traced
     std::vector<double> weight; // channels per exit
     std::vector<double> absorbed, capped, lost;
     long long segments = 0;
@@ -32,17 +34,19 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
     const Vec3 down = -wi;
     const bool transmits = material.transmits();
 
-    std::vector<BlockOutput> out(blocks);
-    tbb::parallel_for((long long)0, blocks, [&](long long b) {
-        BlockOutput& o = out[b];
+    auto trace_block = [&](long long b, BlockOutput& o) {
+        o.bin.clear(), o.exit.clear(), o.weight.clear(), o.segments = 0;
         o.absorbed.assign(nc, 0.0), o.capped.assign(nc, 0.0), o.lost.assign(nc, 0.0);
         Rng rng{st.seed, st.stream, std::uint64_t(b)};
         std::vector<double> w(nc), before(nc);
         const long long first = b * st.block, last = std::min(rays, first + st.block);
+        // Stratified beam: one ray per cell of an S x S grid over the patch, ray r in cell
+        // (r mod S, r div S); the cell is stepped rather than divided out per ray.
+        long long cx = first % side, cy = first / side;
+        const double cell = L / double(side);
         for (long long r = first; r < last; ++r) {
-            // Stratified beam: one ray per cell of an S x S grid over the patch.
-            const double x = (double(r % side) + rng.uniform()) / double(side) * L;
-            const double y = (double(r / side) + rng.uniform()) / double(side) * L;
+            const double x = (double(cx) + rng.uniform()) * cell;
+            const double y = (double(cy) + rng.uniform()) * cell;
             Vec3 origin{x, y, scene.z_max() + eps};
             Vec3 dir = down;
             std::fill(w.begin(), w.end(), power);
@@ -64,8 +68,8 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
                         break;
                     }
                     const int order = std::min(bounces, orders) - 1;
-                    o.bin.push_back(up ? order * cells + sensor.lookup(dir)
-                                       : (orders + order) * cells + sensor.lookup_lower(dir));
+                    o.bin.push_back(up ? order : orders + order);
+                    o.exit.push_back(dir);
                     o.weight.insert(o.weight.end(), w.begin(), w.end());
                     break;
                 }
@@ -78,19 +82,26 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
                     break;
                 }
                 ++bounces;
-                before = w;
+                for (int k = 0; k < nc; ++k) before[k] = w[k];
                 Vec3 next;
                 const bool alive = material.scatter(-dir, h.normal, rng, next, w.data());
                 for (int k = 0; k < nc; ++k) o.absorbed[k] += before[k] - (alive ? w[k] : 0.0);
                 if (!alive) break;
-                dir = normalize(next);
+                dir =
+                    next; // unit: reflection and refraction keep the length, sampling returns unit
                 // Leave the facet on the side the ray goes, by Scene::epsilon() (one float ulp).
                 const double along = dot(dir, h.normal);
                 if (transmits) below = along < 0;
                 origin = h.position + (along >= 0 ? eps : -eps) * h.normal;
             }
+            if (++cx == side) cx = 0, ++cy;
         }
-    });
+        // Bin the block's exits in one pass: the sensor's tables stay in cache (between bounces
+        // Embree's traversal evicts them) and the lookups overlap.
+        for (size_t e = 0; e < o.bin.size(); ++e)
+            o.bin[e] = o.bin[e] * cells + (o.bin[e] < orders ? sensor.lookup(o.exit[e])
+                                                             : sensor.lookup_lower(o.exit[e]));
+    };
 
     TraceResult res;
     res.orders = orders, res.cells = cells, res.channels = nc, res.rays = rays;
@@ -100,7 +111,7 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
     led.reflected.assign(size_t(orders) * nc, 0.0);
     if (transmits) led.transmitted.assign(size_t(orders) * nc, 0.0);
     led.absorbed.assign(nc, 0.0), led.capped.assign(nc, 0.0), led.lost.assign(nc, 0.0);
-    for (const BlockOutput& o : out) { // block order: deterministic
+    auto merge_block = [&](const BlockOutput& o) {
         for (size_t e = 0; e < o.bin.size(); ++e) {
             const bool up = o.bin[e] < orders * cells;
             const int bin = up ? o.bin[e] : o.bin[e] - orders * cells, order = bin / cells;
@@ -115,6 +126,15 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
             led.absorbed[k] += o.absorbed[k], led.capped[k] += o.capped[k],
                 led.lost[k] += o.lost[k];
         res.segments += o.segments;
+    };
+    // Blocks are traced in parallel a batch at a time, then merged in block order (so the sums do
+    // not depend on the threads); the batch's buffers are reused, which keeps memory flat.
+    const long long batch = std::max(256, 16 * tbb::this_task_arena::max_concurrency());
+    std::vector<BlockOutput> out(size_t(std::min(blocks, batch)));
+    for (long long b0 = 0; b0 < blocks; b0 += batch) {
+        const long long b1 = std::min(blocks, b0 + batch);
+        tbb::parallel_for(b0, b1, [&](long long b) { trace_block(b, out[size_t(b - b0)]); });
+        for (long long b = b0; b < b1; ++b) merge_block(out[size_t(b - b0)]);
     }
     led.unaccounted.assign(nc, 1.0);
     for (int k = 0; k < nc; ++k) {

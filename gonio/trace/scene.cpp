@@ -9,6 +9,21 @@
 namespace gonio {
 
 namespace {
+// A ray from o along d with no far limit, for rtcIntersect1.
+RTCRayHit embree_ray(float ox, float oy, float oz, float dx, float dy, float dz) {
+    RTCRayHit rh;
+    rh.ray.org_x = ox, rh.ray.org_y = oy, rh.ray.org_z = oz;
+    rh.ray.dir_x = dx, rh.ray.dir_y = dy, rh.ray.dir_z = dz;
+    rh.ray.tnear = 0.0f;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.time = 0.0f;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0, rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+}
+
 // Embree calls this from C code: record the first error (no exception may cross C frames);
 // the constructor checks it after building.
 void embree_error(void* user, RTCError code, const char* message) {
@@ -18,7 +33,7 @@ void embree_error(void* user, RTCError code, const char* message) {
 }
 } // namespace
 
-Scene::Scene(const HeightField& s) : surface_(s) {
+Scene::Scene(const HeightField& s) : n_(s.n) {
     if (s.n < 2 || s.n > 32766)
         throw std::invalid_argument("Scene: grid size must be in [2, 32766]");
     device_ = rtcNewDevice(nullptr);
@@ -41,6 +56,7 @@ Scene::Scene(const HeightField& s) : surface_(s) {
             p[0] = float(x * s.spacing), p[1] = float(y * s.spacing), p[2] = h;
             z_min_ = std::min(z_min_, double(h)), z_max_ = std::max(z_max_, double(h));
         }
+    vertices_ = vertices; // owned by the geometry, which the scene keeps alive
     RTCGrid* grid = static_cast<RTCGrid*>(rtcSetNewGeometryBuffer(
         geom, RTC_BUFFER_TYPE_GRID, 0, RTC_FORMAT_GRID, sizeof(RTCGrid), 1));
     grid->startVertexID = 0;
@@ -72,16 +88,10 @@ Scene::~Scene() {
     if (device_) rtcReleaseDevice(device_);
 }
 
-float Scene::intersect(const Vec3& o, const Vec3& d, float tfar) const {
+float Scene::intersect(const float o[3], const float d[3]) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit rh{};
-    rh.ray.org_x = float(o.x), rh.ray.org_y = float(o.y), rh.ray.org_z = float(o.z);
-    rh.ray.dir_x = float(d.x), rh.ray.dir_y = float(d.y), rh.ray.dir_z = float(d.z);
-    rh.ray.tnear = 0.0f;
-    rh.ray.tfar = tfar;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = embree_ray(o[0], o[1], o[2], d[0], d[1], d[2]);
     rtcIntersect1(scene_, &context, &rh);
     return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<float>::infinity()
                                                     : rh.ray.tfar;
@@ -89,50 +99,43 @@ float Scene::intersect(const Vec3& o, const Vec3& d, float tfar) const {
 
 SurfaceHit Scene::trace(Vec3 o, const Vec3& d, bool below, int max_wraps) const {
     SurfaceHit r;
-    // Embree sees the origin in float. Near a sharp edge the rounding of x and y (times the
-    // slope) can put it on the wrong side of the neighbouring facet: then move it onto the
-    // surface, on the ray's own side (+1 above, -1 below).
-    const double side = below ? -1.0 : 1.0;
+    const double side = below ? -1.0 : 1.0; // the ray's side of the surface: +1 above, -1 below
     // A ray running exactly along a side wall (d.x = 0, as every ray of a beam at phi_i = 0 does
     // in y) stays in its plane: if that plane is, in float, the patch's border (x = 0 or L), the
     // ray grazes the grid's open boundary edges and can slip through. Move it just inside.
     // Measured: 2 beam rays in 1.2e7 missed the surface this way before.
     if (d.x == 0) o.x = std::clamp(double(float(o.x)), border_lo_, border_hi_);
     if (d.y == 0) o.y = std::clamp(double(float(o.y)), border_lo_, border_hi_);
-    if (below ? o.z > z_min_ : o.z < z_max_) { // else nothing is on the wrong side
+    // Embree sees the origin in float. Near a sharp edge the rounding of x and y (times the
+    // slope) can put it on the wrong side of the neighbouring facet. A ray heading away from the
+    // surface's other side (up from above, down from below) then crosses that facet from the
+    // wrong side, which the loop below passes; one heading towards it could stay on the wrong
+    // side and leave through the wrong plane: move its origin onto the surface, on its side.
+    if (side * d.z <= 0 && (below ? o.z > z_min_ : o.z < z_max_)) {
         const double fx = float(o.x), fy = float(o.y);
-        const double surface = surface_.height_at_grid(fx * inv_spacing_, fy * inv_spacing_);
+        const int stride = n_ + 1;
+        const double surface = HeightField::triangulated_height(
+            fx * inv_spacing_, fy * inv_spacing_, n_, nullptr, nullptr,
+            [&](int x, int y) { return vertices_[3 * (size_t(y) * stride + x) + 2]; });
         const double gap = side * (double(float(o.z)) - surface) - epsilon_;
         if (gap < 0) {
             o.z -= side * gap;
             r.lifted = true;
         }
     }
-    const double top = z_max_ + epsilon_, bottom = z_min_ - epsilon_;
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    // Distances to the walls of the box along d: the wall ahead on each axis, by reciprocals.
-    const double inf = std::numeric_limits<double>::infinity();
-    const double ix = d.x != 0 ? 1.0 / d.x : 0.0, iy = d.y != 0 ? 1.0 / d.y : 0.0;
-    const double iz = d.z != 0 ? 1.0 / d.z : 0.0;
-    const double wall_x = d.x > 0 ? period_ : 0.0, wall_y = d.y > 0 ? period_ : 0.0;
-    const double wall_z = d.z > 0 ? top : bottom;
     for (r.wraps = 0; r.wraps <= max_wraps;) {
-        const double tx = d.x != 0 ? (wall_x - o.x) * ix : inf;
-        const double ty = d.y != 0 ? (wall_y - o.y) * iy : inf;
-        const double tz = d.z != 0 ? (wall_z - o.z) * iz : inf;
-        const double t_wall = std::max(0.0, std::min({tx, ty, tz}));
-        RTCRayHit rh{};
-        rh.ray.org_x = float(o.x), rh.ray.org_y = float(o.y), rh.ray.org_z = float(o.z);
-        rh.ray.dir_x = float(d.x), rh.ray.dir_y = float(d.y), rh.ray.dir_z = float(d.z);
-        rh.ray.tnear = 0.0f;
-        // A little past the wall, so that a facet at the wall is not missed; a hit beyond the
-        // wall is outside the patch and is found again after the wrap.
-        rh.ray.tfar = float(t_wall + epsilon_);
-        rh.ray.mask = 0xFFFFFFFFu;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        // No far limit is needed: there is no geometry beyond the walls, and a straight ray that
+        // leaves the box never comes back, so any hit lies inside the patch. The walls are only
+        // needed when nothing is hit (below), which keeps their divisions off the hit path.
+        RTCRayHit rh =
+            embree_ray(float(o.x), float(o.y), float(o.z), float(d.x), float(d.y), float(d.z));
         rtcIntersect1(scene_, &context, &rh);
-        if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID && rh.ray.tfar <= t_wall + epsilon_) {
+        if (recorder_)
+            recorder_->insert(recorder_->end(), {rh.ray.org_x, rh.ray.org_y, rh.ray.org_z,
+                                                 rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z});
+        if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
             Vec3 ng{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z};
             ng = normalize(ng);
             const Vec3 up = ng.z < 0 ? -ng : ng; // a height field's facets face up
@@ -158,6 +161,14 @@ SurfaceHit Scene::trace(Vec3 o, const Vec3& d, bool below, int max_wraps) const 
             r.position = at;
             return r;
         }
+        // Nothing hit: the ray leaves the box through the wall it meets first.
+        const double inf = std::numeric_limits<double>::infinity();
+        const double tx = d.x > 0 ? (period_ - o.x) / d.x : d.x < 0 ? -o.x / d.x : inf;
+        const double ty = d.y > 0 ? (period_ - o.y) / d.y : d.y < 0 ? -o.y / d.y : inf;
+        const double tz = d.z > 0   ? (z_max_ + epsilon_ - o.z) / d.z
+                          : d.z < 0 ? (z_min_ - epsilon_ - o.z) / d.z
+                                    : inf;
+        const double t_wall = std::max(0.0, std::min({tx, ty, tz}));
         if (tz <= tx && tz <= ty) {
             r.kind = d.z > 0 ? SurfaceHit::escaped_up : SurfaceHit::escaped_down;
             return r;

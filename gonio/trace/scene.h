@@ -13,6 +13,7 @@
 
 #include <embree3/rtcore.h>
 #include <string>
+#include <vector>
 
 namespace gonio {
 
@@ -47,16 +48,24 @@ class Scene {
                      int max_wraps = 1 << 20) const;
 
     // One bare rtcIntersect1 call (for the benchmark): the hit distance, or infinity.
-    float intersect(const Vec3& origin, const Vec3& dir, float tfar) const;
+    float intersect(const float origin[3], const float dir[3]) const;
+
+    // For the benchmark: while set (single-threaded use only), every ray trace() gives Embree is
+    // appended to *sink as origin x, y, z and direction x, y, z.
+    void record_segments(std::vector<float>* sink) { recorder_ = sink; }
 
   private:
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     double period_ = 0, z_min_ = 0, z_max_ = 0, epsilon_ = 0;
-    double inv_spacing_ = 1;                     // for exact heights without a division
-    double border_lo_ = 0, border_hi_ = 0;       // the patch's inside, in float, nearest the border
-    std::string error_;   // first error reported by Embree's callback
-    HeightField surface_; // the exact triangulated surface, to keep ray origins outside it
+    double inv_spacing_ = 1;               // for exact heights without a division
+    double border_lo_ = 0, border_hi_ = 0; // the patch's inside, in float, nearest the border
+    std::string error_;                    // first error reported by Embree's callback
+    std::vector<float>* recorder_ = nullptr;
+    // The vertices as Embree holds them ((n+1)^2, x y z floats): the exact triangulated surface,
+    // to keep ray origins outside it, read where Embree has just read it (in cache).
+    const float* vertices_ = nullptr;
+    int n_ = 0;
 };
 
 } // namespace gonio
