@@ -7,8 +7,9 @@ namespace gonio {
 
 int run_compare_command(const std::string& path) {
     const ResultSummary s = read_result_summary(path);
-    std::printf("%-20s %7s %7s %3s %10s %10s %10s %10s %10s %10s\n", "case", "theta_i", "phi_i",
-                "ch", "model_L1", "sim_L1", "rel_diff", "L1_dist", "sim_L2+", "sim_Linf");
+    std::printf("%-20s %7s %7s %3s %10s %10s %10s %10s %10s %10s %10s\n", "case", "theta_i",
+                "phi_i", "ch", "model_L1", "sim_L1", "rel_diff", "L1_dist", "sim_L2+", "sim_Linf",
+                "sim_T");
     for (const CaseSummary& c : s.cases) {
         auto get = [&](const char* name, size_t i) {
             auto it = c.albedos.find(name);
@@ -28,7 +29,11 @@ int run_compare_command(const std::string& path) {
                                     get("l1_distance", i));
                     else
                         std::printf(" %10s %10.6f %10s %10s", "-", get("l1_albedo", i), "-", "-");
-                    std::printf(" %10.6f %10.6f\n", get("l2plus_albedo", i), get("linf_albedo", i));
+                    std::printf(" %10.6f %10.6f", get("l2plus_albedo", i), get("linf_albedo", i));
+                    if (c.albedos.count("transmitted_albedo")) // dielectrics only
+                        std::printf(" %10.6f\n", get("transmitted_albedo", i));
+                    else
+                        std::printf(" %10s\n", "-");
                 }
     }
     return 0;

@@ -35,7 +35,8 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
     const bool transmits = material.transmits();
 
     auto trace_block = [&](long long b, BlockOutput& o) {
-        o.bin.clear(), o.exit.clear(), o.weight.clear(), o.segments = 0;
+        o.bin.clear(), o.exit.clear(), o.weight.clear();
+        long long segments = 0; // a local: blocks of different threads share cache lines
         o.absorbed.assign(nc, 0.0), o.capped.assign(nc, 0.0), o.lost.assign(nc, 0.0);
         Rng rng{st.seed, st.stream, std::uint64_t(b)};
         std::vector<double> w(nc), before(nc);
@@ -58,7 +59,7 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
             };
             for (;;) {
                 const SurfaceHit h = scene.trace(origin, dir, below);
-                o.segments += h.wraps + 1;
+                segments += h.wraps + 1;
                 if (h.kind == SurfaceHit::escaped_up || h.kind == SurfaceHit::escaped_down) {
                     // A ray leaves for good only upwards from above and downwards from below; and
                     // a beam aimed down cannot leave before a bounce. Anything else is a failure.
@@ -96,6 +97,7 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
             }
             if (++cx == side) cx = 0, ++cy;
         }
+        o.segments = segments;
         // Bin the block's exits in one pass: the sensor's tables stay in cache (between bounces
         // Embree's traversal evicts them) and the lookups overlap.
         for (size_t e = 0; e < o.bin.size(); ++e)
