@@ -90,7 +90,7 @@ def main():
                         f"L1 distance {a('l1_distance'):.3f}, L2+ {a('l2plus_albedo'):.4f}",
                         fontsize=10)
                     out = os.path.join(out_dir, f"{name}_theta{theta:.2f}_phi{phi:.1f}.png")
-                    fig.savefig(out, dpi=110, bbox_inches="tight")
+                    fig.savefig(out, dpi=80, bbox_inches="tight")
                     plt.close(fig)
                     print(out)
                     written += 1
