@@ -71,18 +71,24 @@ TEST_CASE("tracing gives identical results with 1 and 2 threads") {
     const Scene scene(beckmann_surface(0.5, 64));
     const BeckersSensor sensor(145);
     const SpecularReflector gold(FresnelTerm::conductor({{0.21, 3.272}}));
+    const DielectricFacet glass(1.5); // a random choice at every facet
     TraceSettings st;
     st.rays = 50000;
-    st.block = 1000;
+    st.block = 100; // 500 blocks: more than one merge batch
     const Vec3 wi = spherical_direction(radians(50.0), 0.0);
-    TraceResult one;
+    TraceResult one, glass_one;
     {
         tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
         one = trace_incidence(scene, gold, sensor, wi, st);
+        glass_one = trace_incidence(scene, glass, sensor, wi, st);
     }
     const TraceResult two = trace_incidence(scene, gold, sensor, wi, st);
     CHECK(one.energy == two.energy);
     CHECK(one.ledger.absorbed == two.ledger.absorbed);
+    const TraceResult glass_two = trace_incidence(scene, glass, sensor, wi, st);
+    CHECK(glass_one.energy == glass_two.energy);
+    CHECK(glass_one.transmitted == glass_two.transmitted);
+    CHECK(glass_one.segments == glass_two.segments);
     st.seed = 2;
     CHECK(trace_incidence(scene, gold, sensor, wi, st).energy != two.energy);
 }
