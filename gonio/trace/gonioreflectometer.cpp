@@ -36,7 +36,7 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
 
     auto trace_block = [&](long long b, BlockOutput& o) {
         o.bin.clear(), o.exit.clear(), o.weight.clear();
-        long long segments = 0; // a local: blocks of different threads share cache lines
+        long long segments = 0; // counted locally: neighbouring blocks may share a cache line
         o.absorbed.assign(nc, 0.0), o.capped.assign(nc, 0.0), o.lost.assign(nc, 0.0);
         Rng rng{st.seed, st.stream, std::uint64_t(b)};
         std::vector<double> w(nc), before(nc);
@@ -88,8 +88,8 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
                 const bool alive = material.scatter(-dir, h.normal, rng, next, w.data());
                 for (int k = 0; k < nc; ++k) o.absorbed[k] += before[k] - (alive ? w[k] : 0.0);
                 if (!alive) break;
-                dir =
-                    next; // unit: reflection and refraction keep the length, sampling returns unit
+                // Unit already: reflection and refraction keep the length, sampling returns unit.
+                dir = next;
                 // Leave the facet on the side the ray goes, by Scene::epsilon() (one float ulp).
                 const double along = dot(dir, h.normal);
                 if (transmits) below = along < 0;

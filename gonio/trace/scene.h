@@ -5,9 +5,10 @@
 // Embree splits every grid cell like a quad, into (v0, v1, v3) and (v2, v3, v1): the two
 // triangles of heightfield.h.
 //
-// trace() follows a ray across the periodic patch: each segment's far distance is clipped to the
-// walls of the box [0, L]^2 x [zmin, zmax]; a ray that leaves through a side wall re-enters
-// through the opposite one, and it leaves for good only through the top (or the bottom) plane.
+// trace() follows a ray across the periodic patch, the box [0, L]^2 x [zmin, zmax]: a segment that
+// hits nothing leaves the box through the wall it meets first (no geometry lies beyond the walls,
+// so any hit is inside); through a side wall it re-enters through the opposite one, and it leaves
+// for good only through the top (or the bottom) plane.
 #include "core/math.h"
 #include "heightfield/heightfield.h"
 
