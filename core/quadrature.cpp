@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <queue>
 #include <stdexcept>
 
 namespace gonio {
@@ -116,6 +117,42 @@ double integrate_adaptive(const std::function<double(double)>& f, double a, doub
     }
     const double tol = std::max(abs_tol, rel_tol * std::abs(scale));
     return adapt(f, a, b, k, g, tol, max_depth);
+}
+
+double integrate_global(const std::function<double(double)>& f, double a, double b, double abs_tol,
+                        double rel_tol, int max_pieces) {
+    if (a == b) return 0;
+    struct Piece {
+        double a, b, k, err;
+        bool operator<(const Piece& o) const { return err < o.err; }
+    };
+    std::priority_queue<Piece> pieces;
+    double k, g, total = 0, error = 0;
+    gk15(f, a, b, k, g);
+    pieces.push({a, b, k, std::abs(k - g)});
+    total = k, error = std::abs(k - g);
+    while (error > std::max(abs_tol, rel_tol * std::abs(total)) &&
+           int(pieces.size()) < max_pieces) {
+        const Piece p = pieces.top();
+        pieces.pop();
+        const double m = 0.5 * (p.a + p.b);
+        if (!(m > p.a && m < p.b)) { // cannot split further: keep it as it is
+            pieces.push({p.a, p.b, p.k, 0.0});
+            error -= p.err;
+            continue;
+        }
+        double k1, g1, k2, g2;
+        gk15(f, p.a, m, k1, g1);
+        gk15(f, m, p.b, k2, g2);
+        pieces.push({p.a, m, k1, std::abs(k1 - g1)});
+        pieces.push({m, p.b, k2, std::abs(k2 - g2)});
+        total += k1 + k2 - p.k;
+        error += std::abs(k1 - g1) + std::abs(k2 - g2) - p.err;
+    }
+    // Re-sum the pieces (the running sums collect round-off).
+    total = 0;
+    while (!pieces.empty()) total += pieces.top().k, pieces.pop();
+    return total;
 }
 
 double integrate_adaptive_2d(const std::function<double(double, double)>& f, double x0, double x1,

@@ -20,6 +20,13 @@ const GaussLegendre& gauss_legendre(int n);
 double integrate_adaptive(const std::function<double(double)>& f, double a, double b,
                           double abs_tol = 1e-12, double rel_tol = 1e-10, int max_depth = 40);
 
+// Globally adaptive Gauss-Kronrod (7/15): always bisects the piece with the largest error
+// estimate, until the summed estimate is below max(abs_tol, rel_tol * |integral|) or max_pieces
+// pieces exist. Unlike integrate_adaptive it cannot blow up on an endpoint singularity or a
+// non-smooth tail (its work is bounded), so it suits integrands mapped from [0, infinity).
+double integrate_global(const std::function<double(double)>& f, double a, double b,
+                        double abs_tol = 1e-300, double rel_tol = 1e-12, int max_pieces = 2000);
+
 // Nested adaptive integral over x in [x0, x1], y in [y0(x), y1(x)].
 double integrate_adaptive_2d(const std::function<double(double, double)>& f, double x0, double x1,
                              const std::function<double(double)>& y0,

@@ -21,9 +21,9 @@ class ShapeInvariantNdf : public Ndf {
     double lambda(const Vec3& v) const final;
     Vec3 sample_m(double u1, double u2) const final;
     Vec3 sample_visible(const Vec3& v, double u1, double u2) const override;
-    std::string describe() const final;
-    double narrowest_feature() const final;
-    double widest_feature() const final;
+    std::string describe() const override;
+    double narrowest_feature() const override;
+    double widest_feature() const override;
     bool slope_stretch(double& alpha_x, double& alpha_y) const final {
         alpha_x = ax_, alpha_y = ay_;
         return true;

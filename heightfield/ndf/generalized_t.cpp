@@ -1,0 +1,42 @@
+#include "heightfield/ndf/generalized_t.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace gonio {
+
+namespace {
+RadialProfile generalized_t_profile(double p, double q) {
+    if (!(p >= GeneralizedT::kPMin && p <= GeneralizedT::kPMax))
+        throw std::invalid_argument("generalized_t: p must be in [0.5, 20]");
+    if (!(q > 0 && q <= GeneralizedT::kQMax))
+        throw std::invalid_argument("generalized_t: q must be in (0, 1e6]");
+    if (!(p * q >= 2))
+        throw std::invalid_argument("generalized_t: p q must be >= 2 (below 2, D diverges at the "
+                                    "horizon; at or below 1 Smith's Lambda is infinite)");
+    RadialProfile f;
+    f.name = "generalized_t";
+    std::ostringstream s;
+    s.precision(17);
+    s << "p=" << p << ", q=" << q;
+    f.parameters = s.str();
+    // log of p / (2 pi q^(2/p) B(2/p, q)), with B from log-gamma (finite for large q).
+    const double a = 2 / p;
+    const double log_c = std::log(p / (2 * kPi)) - a * std::log(q) -
+                         (std::lgamma(a) + std::lgamma(q) - std::lgamma(q + a));
+    f.p22 = [p, q, a, log_c](double r2) {
+        return std::exp(log_c - (q + a) * std::log1p(std::pow(r2, 0.5 * p) / q));
+    };
+    f.bulk = std::pow(2 / p, 1 / p);
+    if (p > 4) f.kinks = {1.0};
+    f.narrow = std::min(1.0, f.bulk);
+    f.wide = std::max(1.0, f.bulk);
+    return f;
+}
+} // namespace
+
+GeneralizedT::GeneralizedT(double alpha_x, double alpha_y, double p, double q)
+    : RadialNdf(alpha_x, alpha_y, generalized_t_profile(p, q)), p_(p), q_(q) {}
+
+} // namespace gonio

@@ -1,0 +1,178 @@
+// The NDF battery for the radial generalised family (Student's t, generalised normal, the two-shape
+// generalised t): normalisation, Lambda against brute force [R19 Eq. 5], visible-normal
+// normalisation, chi-square tests of both samplers, the family's limits, and parameter checks.
+#include "chi_square_harness.h"
+#include "heightfield/ndf/beckmann.h"
+#include "heightfield/ndf/generalized_normal.h"
+#include "heightfield/ndf/generalized_t.h"
+#include "heightfield/ndf/ggx.h"
+#include "heightfield/ndf/student_t.h"
+#include "ndf_quadrature.h"
+
+#include <cmath>
+#include <doctest/doctest.h>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using namespace gonio;
+using gonio::test::hemisphere_integral;
+
+namespace {
+std::vector<std::unique_ptr<Ndf>> family() {
+    std::vector<std::unique_ptr<Ndf>> out;
+    out.push_back(std::make_unique<StudentT>(0.5, 0.5, 2.2)); // heavy tails, near the limit
+    out.push_back(std::make_unique<StudentT>(0.3, 0.7, 3.0)); // anisotropic
+    out.push_back(std::make_unique<StudentT>(0.5, 0.5, 20.0));
+    out.push_back(std::make_unique<GeneralizedNormal>(0.5, 0.5, 0.5)); // peaked
+    out.push_back(std::make_unique<GeneralizedNormal>(0.4, 0.4, 1.0));
+    out.push_back(std::make_unique<GeneralizedNormal>(0.3, 0.6, 8.0)); // flat-topped
+    out.push_back(std::make_unique<GeneralizedT>(0.5, 0.5, 1.5, 3.0));
+    out.push_back(std::make_unique<GeneralizedT>(0.4, 0.4, 4.0, 0.6));
+    return out;
+}
+
+bool anisotropic(const Ndf& ndf) {
+    double ax, ay;
+    return ndf.slope_stretch(ax, ay) && ax != ay;
+}
+} // namespace
+
+TEST_CASE("NDF battery: normalisation of the generalised family") {
+    for (const auto& ndf : family()) {
+        CAPTURE(ndf->describe());
+        const double integral = hemisphere_integral([&](const Vec3& m) { return ndf->D(m) * m.z; },
+                                                    ndf->narrowest_feature(), nullptr, 1e-10);
+        CHECK(std::abs(integral - 1.0) < 1e-4);
+        CHECK(std::abs(integral - 1.0) < 1e-6);
+    }
+}
+
+TEST_CASE("NDF battery: tabulated Lambda of the generalised family against R19 Eq. 5") {
+    for (const auto& ndf : family()) {
+        for (double theta_deg : {0.0, 30.0, 60.0, 85.0, 89.9}) {
+            for (double phi_deg :
+                 anisotropic(*ndf) ? std::vector<double>{0, 30, 90} : std::vector<double>{20}) {
+                const Vec3 v = spherical_direction(radians(theta_deg), radians(phi_deg));
+                const double integral = hemisphere_integral(
+                    [&](const Vec3& m) { return std::max(0.0, dot(v, m)) * ndf->D(m); },
+                    ndf->narrowest_feature(), &v, 1e-10);
+                const double brute = integral / v.z - 1.0, lambda = ndf->lambda(v);
+                CAPTURE(ndf->describe());
+                CAPTURE(theta_deg);
+                CAPTURE(phi_deg);
+                CAPTURE(lambda);
+                CAPTURE(brute);
+                CHECK(std::abs(brute - lambda) <= 1e-5 * (1 + lambda)); // the 1e-5
+            }
+        }
+    }
+}
+
+TEST_CASE("NDF battery: visible normals of the generalised family are normalised") {
+    for (const auto& ndf : family()) {
+        for (double theta_deg : {0.0, 45.0, 85.0}) {
+            const Vec3 v = spherical_direction(radians(theta_deg), radians(30.0));
+            const double integral =
+                hemisphere_integral([&](const Vec3& m) { return ndf->pdf_visible(v, m); },
+                                    ndf->narrowest_feature(), &v, 1e-10);
+            CAPTURE(ndf->describe());
+            CAPTURE(theta_deg);
+            CHECK(std::abs(integral - 1.0) < 1e-5);
+        }
+    }
+}
+
+TEST_CASE("NDF battery: both samplers of the generalised family pass chi-square tests") {
+    // 8 distributions x (D cos + visible from 2 angles), Sidak-corrected at 1 %.
+    constexpr int kTests = 24, kSamples = 400000, kCells = 1001;
+    std::uint64_t seed = 7;
+    auto check = [&](const test::DirectionChiSquare& r, const std::string& what) {
+        CAPTURE(what);
+        CAPTURE(r.chi.statistic);
+        CAPTURE(r.chi.dof);
+        CAPTURE(r.chi.p_value);
+        CAPTURE(r.chi.failure);
+        CHECK(r.chi.failure.empty());
+        CHECK(r.chi.p_value > sidak_level(0.01, kTests));
+    };
+    for (const auto& ndf : family()) {
+        check(test::chi_square_directions([&](double a, double b) { return ndf->sample_m(a, b); },
+                                          [&](const Vec3& m) { return ndf->pdf_m(m); }, kSamples,
+                                          kCells, seed++),
+              ndf->describe() + " D cos");
+        for (double theta_deg : {40.0, 85.0}) {
+            const Vec3 v = spherical_direction(radians(theta_deg), radians(30.0));
+            check(test::chi_square_directions(
+                      [&](double a, double b) { return ndf->sample_visible(v, a, b); },
+                      [&](const Vec3& m) { return ndf->pdf_visible(v, m); }, kSamples, kCells,
+                      seed++),
+                  ndf->describe() + " visible from " + std::to_string(theta_deg));
+        }
+    }
+}
+
+TEST_CASE("Student's t: gamma = 2 is GGX, gamma = 1e4 is Beckmann within 1e-3") {
+    const StudentT t2(0.3, 0.6, 2.0), t_big(0.5, 0.5, 1e4);
+    const Ggx ggx(0.3, 0.6);
+    const Beckmann beckmann(0.5);
+    for (double t : {0.0, 0.2, 0.7, 1.2, 1.5}) {
+        for (double p : {0.0, 0.7, 2.0}) {
+            const Vec3 d = spherical_direction(t, p);
+            CHECK(t2.D(d) == doctest::Approx(ggx.D(d)).epsilon(1e-12));
+            CHECK(t2.lambda(d) == doctest::Approx(ggx.lambda(d)).epsilon(1e-8));
+            const double peak = beckmann.D({0, 0, 1});
+            CHECK(std::abs(t_big.D(d) - beckmann.D(d)) <= 1e-3 * peak);
+            // G1 = 1 / (1 + Lambda) within 1e-3.
+            CHECK(std::abs(t_big.lambda(d) - beckmann.lambda(d)) <=
+                  1e-3 * (1 + beckmann.lambda(d)));
+        }
+    }
+}
+
+TEST_CASE("the two-shape generalised t: Student's t at p = 2, the generalised normal as q grows") {
+    const GeneralizedT gt_std(0.4, 0.4, 2.0, 2.5), gt_gnd(0.4, 0.4, 1.5, 1e6);
+    const StudentT std_(0.4, 0.4, 3.5);
+    const GeneralizedNormal gnd(0.4, 0.4, 1.5);
+    for (double t : {0.0, 0.3, 0.8, 1.3}) {
+        const Vec3 d = spherical_direction(t, 0.4);
+        CHECK(gt_std.D(d) == doctest::Approx(std_.D(d)).epsilon(1e-10));
+        CHECK(gt_std.lambda(d) == doctest::Approx(std_.lambda(d)).epsilon(1e-7));
+        CHECK(gt_gnd.D(d) == doctest::Approx(gnd.D(d)).epsilon(1e-4));
+        CHECK(gt_gnd.lambda(d) == doctest::Approx(gnd.lambda(d)).epsilon(1e-4));
+    }
+}
+
+TEST_CASE("the generalised family: Smith terms finite and monotone, limits rejected clearly") {
+    for (const auto& ndf : family()) {
+        CAPTURE(ndf->describe());
+        CHECK(ndf->lambda({0, 0, 1}) == 0.0);
+        CHECK(ndf->G1({1, 0, 0}) == 0.0);
+        double previous = -1;
+        for (double t = 0; t < kPi / 2; t += 0.01) {
+            const double l = ndf->lambda(spherical_direction(t, 0.3));
+            CHECK(std::isfinite(l));
+            CHECK(l >= previous);
+            previous = l;
+        }
+    }
+    auto message = [](auto make) {
+        try {
+            make();
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    for (double gamma : {1.9, 1.5, 1.01, 1.0, 0.5, 2e6, std::nan("")})
+        CHECK(message([&] { StudentT(0.5, 0.5, gamma); }).find("gamma must be in [2, 1e6]") !=
+              std::string::npos);
+    for (double p : {0.1, 0.49, 25.0, std::nan("")})
+        CHECK(message([&] { GeneralizedNormal(0.5, 0.5, p); }).find("p must be in [0.5, 20]") !=
+              std::string::npos);
+    CHECK(message([] { GeneralizedT(0.5, 0.5, 1.0, 1.9); }).find("p q must be >= 2") !=
+          std::string::npos);
+    CHECK(message([] { GeneralizedT(0.5, 0.5, 2.0, 0.0); }).find("q must be in (0, 1e6]") !=
+          std::string::npos);
+}
