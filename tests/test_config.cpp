@@ -255,3 +255,23 @@ TEST_CASE("surface config: defaults, values and errors") {
     CHECK(contains(err("input = \"missing.exr\"\n"),
                    "key 'surface.input': cannot open height map missing.exr"));
 }
+
+TEST_CASE("the generalised NDF family in a config: its shape keys, their ranges") {
+    const Config cfg =
+        parse_config(std::string(kBase), "t.toml", {"ndf.type=student_t", "ndf.gamma=3"});
+    CHECK(cfg.cases[0].ndf.type == "student_t");
+    CHECK(cfg.cases[0].ndf.gamma == 3.0);
+    CHECK(make_ndf(cfg.cases[0].ndf)->describe().find("gamma=3") != std::string::npos);
+    const Config gt = parse_config(std::string(kBase), "t.toml",
+                                   {"ndf.type=generalized_t", "ndf.p=1.5", "ndf.q=4"});
+    CHECK(make_ndf(gt.cases[0].ndf)->name() == "generalized_t");
+    CHECK(contains(error_of(kBase, {"ndf.type=student_t", "ndf.gamma=1.2"}).what(),
+                   "key 'ndf.gamma': value 1.2 is out of range; allowed [2, 1000000]"));
+    CHECK(contains(error_of(kBase, {"ndf.type=student_t"}).what(), "key 'ndf.gamma': missing"));
+    CHECK(contains(error_of(kBase, {"ndf.type=generalized_normal", "ndf.p=30"}).what(),
+                   "key 'ndf.p': value 30 is out of range; allowed [0.5, 20]"));
+    CHECK(contains(error_of(kBase, {"ndf.type=generalized_t", "ndf.p=1", "ndf.q=1"}).what(),
+                   "p q must be >= 2"));
+    // A shape key the type does not use is reported, like any unused key.
+    CHECK(contains(error_of(kBase, {"ndf.gamma=3"}).what(), "ndf.gamma"));
+}

@@ -4,6 +4,9 @@
 #include "gonio/config/overrides.h"
 #include "gonio/config/table_reader.h"
 #include "gonio/material/ior_table.h"
+#include "heightfield/ndf/generalized_normal.h"
+#include "heightfield/ndf/generalized_t.h"
+#include "heightfield/ndf/student_t.h"
 
 #include <algorithm>
 #include <fstream>
@@ -24,7 +27,7 @@ const std::map<std::string, std::vector<std::string>>& schema() {
           "trace", "case"}},
         {"case",
          {"name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface", "trace"}},
-        {"ndf", {"type", "alpha", "alpha_x", "alpha_y"}},
+        {"ndf", {"type", "alpha", "alpha_x", "alpha_y", "gamma", "p", "q"}},
         {"material", {"type", "eta", "ior", "n", "k", "f0", "albedo"}},
         {"spectrum", {"wavelengths"}},
         {"beam", {"theta_i", "phi_i"}},
@@ -228,7 +231,20 @@ class Loader {
     }
 
     void load_ndf(CaseConfig& c, TableReader all) {
-        c.ndf.type = all.string("type", {"beckmann", "ggx"});
+        c.ndf.type = all.string(
+            "type", {"beckmann", "ggx", "student_t", "generalized_normal", "generalized_t"});
+        // Shape parameters of the generalised family [R19 section 2.1], in the ranges where D is
+        // bounded and Smith's Lambda finite (see heightfield/ndf/).
+        if (c.ndf.type == "student_t")
+            c.ndf.gamma = all.number("gamma", {StudentT::kGammaMin, StudentT::kGammaMax});
+        if (c.ndf.type == "generalized_normal")
+            c.ndf.p = all.number("p", {GeneralizedNormal::kPMin, GeneralizedNormal::kPMax});
+        if (c.ndf.type == "generalized_t") {
+            c.ndf.p = all.number("p", {GeneralizedT::kPMin, GeneralizedT::kPMax});
+            c.ndf.q = all.number("q", {0, GeneralizedT::kQMax, true, false});
+            if (!(c.ndf.p * c.ndf.q >= 2))
+                all.fail("q", "p q must be >= 2 (below 2, D diverges at the horizon)");
+        }
         // Roughness keys go together: a case that gives any of them replaces the defaults' ones.
         const bool own = all.has_own("alpha") || all.has_own("alpha_x") || all.has_own("alpha_y");
         TableReader r = own ? all.own() : all;

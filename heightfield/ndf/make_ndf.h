@@ -8,9 +8,13 @@
 namespace gonio {
 
 struct NdfSpec {
-    std::string type = "beckmann"; // "beckmann" | "ggx"
+    // "beckmann" | "ggx" | "student_t" | "generalized_normal" | "generalized_t"
+    std::string type = "beckmann";
     double alpha_x = 0.5;
     double alpha_y = 0.5;
+    double gamma = 2; // student_t
+    double p = 2;     // generalized_normal, generalized_t
+    double q = 1;     // generalized_t
 };
 
 std::unique_ptr<Ndf> make_ndf(const NdfSpec& spec);
