@@ -15,8 +15,10 @@ namespace gonio::test {
 
 // Integral over the upper hemisphere of g(m) dw_m, g smooth except at the breakpoints.
 // `scale` is the narrowest angular feature of g; `v`, if v.z < 1, adds the great circle v.m = 0.
+// `kinks`: polar angles where g is not smooth (the control points of a piecewise-linear NDF).
 inline double hemisphere_integral(const std::function<double(const Vec3&)>& g, double scale,
-                                  const Vec3* v = nullptr, double tol = 1e-11) {
+                                  const Vec3* v = nullptr, double tol = 1e-11,
+                                  const std::vector<double>& kinks = {}) {
     std::vector<double> phi_breaks{0.0, kTwoPi};
     double phi_v = 0, sin_v = 0;
     if (v) {
@@ -29,6 +31,9 @@ inline double hemisphere_integral(const std::function<double(const Vec3&)>& g, d
     auto over_theta = [&](double phi) {
         std::vector<double> breaks{0.0};
         for (double t = scale; t < kPi / 2; t *= 2) breaks.push_back(t);
+        for (double t : kinks)
+            if (t > 0 && t < kPi / 2) breaks.push_back(t);
+        std::sort(breaks.begin(), breaks.end());
         double top = kPi / 2;
         if (v) { // v.m = sin t sin tv cos(p - pv) + cos t cos tv = 0
             const double c = sin_v * std::cos(phi - phi_v);
