@@ -3,7 +3,6 @@
 #include "core/quadrature.h"
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 namespace gonio {
@@ -25,10 +24,7 @@ RadialProfile gaussian_profile(double sigma) {
         throw std::invalid_argument("gaussian: sigma must be in [0.001, 1.5] rad");
     RadialProfile f;
     f.name = "gaussian";
-    std::ostringstream s;
-    s.precision(17);
-    s << "sigma=" << sigma;
-    f.parameters = s.str();
+    f.parameters = parameter_list({{"sigma", sigma}});
     const double c = 1.0 / GaussianAngles::inverse_normalisation(sigma), s2 = 2 * sigma * sigma;
     f.p22 = [c, s2](double r2) { // D cos^4 = C exp(-theta^2 / 2 sigma^2) cos^3, r = tan theta
         const double theta = std::atan(std::sqrt(r2)), cos = 1.0 / std::sqrt(1.0 + r2);

@@ -1,7 +1,6 @@
 #include "heightfield/ndf/generalized_normal.h"
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 namespace gonio {
@@ -12,10 +11,7 @@ RadialProfile generalized_normal_profile(double p) {
         throw std::invalid_argument("generalized_normal: p must be in [0.5, 20]");
     RadialProfile f;
     f.name = "generalized_normal";
-    std::ostringstream s;
-    s.precision(17);
-    s << "p=" << p;
-    f.parameters = s.str();
+    f.parameters = parameter_list({{"p", p}});
     const double c = p / (2 * kPi * std::tgamma(2 / p)); // R19 section 2.1, alpha = 1
     f.p22 = [p, c](double r2) { return c * std::exp(-std::pow(r2, 0.5 * p)); };
     f.bulk = std::pow(2 / p, 1 / p); // where r^p reaches its mean 2/p

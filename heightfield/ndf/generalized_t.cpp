@@ -1,7 +1,6 @@
 #include "heightfield/ndf/generalized_t.h"
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 namespace gonio {
@@ -17,10 +16,7 @@ RadialProfile generalized_t_profile(double p, double q) {
                                     "horizon; at or below 1 Smith's Lambda is infinite)");
     RadialProfile f;
     f.name = "generalized_t";
-    std::ostringstream s;
-    s.precision(17);
-    s << "p=" << p << ", q=" << q;
-    f.parameters = s.str();
+    f.parameters = parameter_list({{"p", p}, {"q", q}});
     // log of p / (2 pi q^(2/p) B(2/p, q)), with B from log-gamma (finite for large q).
     const double a = 2 / p;
     const double log_c = std::log(p / (2 * kPi)) - a * std::log(q) -

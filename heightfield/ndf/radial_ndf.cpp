@@ -21,6 +21,14 @@ std::uint64_t bits(double v) {
 }
 } // namespace
 
+std::string parameter_list(std::initializer_list<std::pair<const char*, double>> values) {
+    std::ostringstream s;
+    s.precision(17);
+    for (const auto& [name, value] : values)
+        s << (s.tellp() > 0 ? ", " : "") << name << "=" << value;
+    return s.str();
+}
+
 RadialNdf::RadialNdf(double alpha_x, double alpha_y, RadialProfile profile)
     : ShapeInvariantNdf(alpha_x, alpha_y), profile_(std::move(profile)) {
     const auto f = [p22 = profile_.p22](double r) { return p22(r * r); };

@@ -17,8 +17,10 @@
 #include "heightfield/ndf/shape_invariant_ndf.h"
 
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace gonio {
@@ -33,6 +35,9 @@ struct RadialProfile {
     double narrow = 1.0;       // angular scale of the narrowest feature at alpha = 1 (rad)
     double wide = 1.0;         // and of the widest
 };
+
+// "name=value, ..." at full precision, for RadialProfile::parameters.
+std::string parameter_list(std::initializer_list<std::pair<const char*, double>> values);
 
 class RadialNdf : public ShapeInvariantNdf {
   public:

@@ -1,7 +1,6 @@
 #include "heightfield/ndf/student_t.h"
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 namespace gonio {
@@ -14,10 +13,7 @@ RadialProfile student_t_profile(double gamma) {
             "1.5 Smith's Lambda is infinite)");
     RadialProfile p;
     p.name = "student_t";
-    std::ostringstream s;
-    s.precision(17);
-    s << "gamma=" << gamma;
-    p.parameters = s.str();
+    p.parameters = parameter_list({{"gamma", gamma}});
     // R19 section 2.1 at unit roughness; log1p keeps gamma -> infinity exact (-> exp(-r2)).
     p.p22 = [gamma](double r2) { return std::exp(-gamma * std::log1p(r2 / (gamma - 1))) / kPi; };
     return p;
