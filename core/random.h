@@ -2,6 +2,7 @@
 // A small, fast, seedable generator (xoshiro256**, Blackman & Vigna 2018) seeded through
 // SplitMix64, so that any tuple of integers (seed, case, incidence, block, ...) names one stream.
 #include <cstdint>
+#include <cstring>
 #include <initializer_list>
 
 namespace gonio {
@@ -11,6 +12,14 @@ inline std::uint64_t splitmix64(std::uint64_t& state) {
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
     return z ^ (z >> 31);
+}
+
+// The bits of a double, to key a stream by the uniforms a sampler was given (so that a sampler
+// needing more randomness than it was given is still a function of its arguments).
+inline std::uint64_t bits_of(double v) {
+    std::uint64_t b;
+    std::memcpy(&b, &v, sizeof b);
+    return b;
 }
 
 class Rng {

@@ -275,3 +275,67 @@ TEST_CASE("the generalised NDF family in a config: its shape keys, their ranges"
     // A shape key the type does not use is reported, like any unused key.
     CHECK(contains(error_of(kBase, {"ndf.gamma=3"}).what(), "ndf.gamma"));
 }
+
+TEST_CASE("curves, blends and mixtures in a config: nested distributions and their errors") {
+    const std::string head = "seed = 1\n[beam]\ntheta_i = 60\n";
+    const Config blend = parse_config(head + R"([ndf]
+type = "blend"
+x = { type = "ggx", alpha = 0.5 }
+y = { type = "sinc", k = 6, floor = 0.05, points = 65 }
+)",
+                                      "t.toml");
+    REQUIRE(blend.cases[0].ndf.parts.size() == 2);
+    CHECK(blend.cases[0].ndf.parts[1].intervals == 64);
+    const auto b = make_ndf(blend.cases[0].ndf);
+    CHECK(b->describe() == "blend(x: ggx(alpha_x=0.5, alpha_y=0.5); y: sinc(alpha_x=1, "
+                           "alpha_y=1, k=6, floor=0.050000000000000003, points=65))");
+
+    const Config mix = parse_config(head + R"([ndf]
+type = "mixture"
+components = [{ type = "beckmann", alpha = 0.1 }, { type = "gaussian", sigma = 20 }]
+weights = [1, 3]
+)",
+                                    "t.toml");
+    CHECK(mix.cases[0].ndf.parts[1].sigma == doctest::Approx(radians(20)));
+    CHECK(make_ndf(mix.cases[0].ndf)->name() == "mixture");
+
+    const Config pl = parse_config(head + R"([ndf]
+type = "piecewise_linear"
+theta = [0, 20, 45, 90]
+value = [1, 0.8, 0.1, 0]
+)",
+                                   "t.toml");
+    CHECK(pl.cases[0].ndf.theta.back() == doctest::Approx(kPi / 2));
+    CHECK(contains(make_ndf(pl.cases[0].ndf)->describe(), "theta_deg=[0, 20, 45, 90]"));
+    const Config sampled = parse_config(head + R"([ndf]
+type = "piecewise_linear"
+points = 33
+source = { type = "student_t", alpha = 0.4, gamma = 3 }
+)",
+                                        "t.toml");
+    CHECK(contains(make_ndf(sampled.cases[0].ndf)->describe(), "points=33 from student_t"));
+
+    auto error = [&](const std::string& ndf) { return std::string(error_of(head + ndf).what()); };
+    CHECK(contains(error("[ndf]\ntype = \"blend\"\nx = { type = \"ggx\", alpha_x = 0.2, alpha_y = "
+                         "0.4 }\ny = { type = \"ggx\", alpha = 0.3 }\n"),
+                   "key 'ndf.x': must be an isotropic curve"));
+    CHECK(contains(error("[ndf]\ntype = \"blend\"\nx = { type = \"ggx\", alpa = 0.2 }\ny = { type "
+                         "= \"ggx\", alpha = 0.3 }\n"),
+                   "key 'ndf.x.alpa': unknown key (did you mean 'alpha'?)"));
+    CHECK(contains(error("[ndf]\ntype = \"blend\"\nx = { type = \"ggx\", alpha = 0.2 }\n"),
+                   "key 'ndf.y': missing"));
+    CHECK(contains(error("[ndf]\ntype = \"mixture\"\ncomponents = [{ type = \"ggx\", alpha = 0.2 "
+                         "}]\nweights = [1, 2]\n"),
+                   "give one per component (1)"));
+    CHECK(
+        contains(error("[ndf]\ntype = \"mixture\"\ncomponents = [{ type = \"ggx\", alpha = 0 }]\n"),
+                 "key 'ndf.components[0].alpha': value 0 is out of range"));
+    CHECK(contains(error("[ndf]\ntype = \"piecewise_linear\"\ntheta = [0, 50, 40, 90]\nvalue = [1, "
+                         "1, 1, 1]\n"),
+                   "control angles must increase"));
+    CHECK(contains(error("[ndf]\ntype = \"sinc\"\nk = 300\n"),
+                   "key 'ndf.k': value 300 is out of range; allowed (0, 200]"));
+    CHECK(contains(error("[ndf]\ntype = \"gaussian\"\nsigma = 120\n"), "key 'ndf.sigma'"));
+    CHECK(contains(error("[ndf]\ntype = \"tabulated\"\nfile = \"nowhere.txt\"\n"),
+                   "cannot open nowhere.txt"));
+}

@@ -4,8 +4,10 @@
 #include "gonio/config/overrides.h"
 #include "gonio/config/table_reader.h"
 #include "gonio/material/ior_table.h"
+#include "heightfield/ndf/gaussian_angles.h"
 #include "heightfield/ndf/generalized_normal.h"
 #include "heightfield/ndf/generalized_t.h"
+#include "heightfield/ndf/piecewise_linear.h"
 #include "heightfield/ndf/student_t.h"
 
 #include <algorithm>
@@ -27,7 +29,9 @@ const std::map<std::string, std::vector<std::string>>& schema() {
           "trace", "case"}},
         {"case",
          {"name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface", "trace"}},
-        {"ndf", {"type", "alpha", "alpha_x", "alpha_y", "gamma", "p", "q"}},
+        {"ndf",
+         {"type", "alpha", "alpha_x", "alpha_y", "gamma", "p", "q", "sigma", "k", "floor", "points",
+          "theta", "value", "source", "x", "y", "components", "weights", "file"}},
         {"material", {"type", "eta", "ior", "n", "k", "f0", "albedo"}},
         {"spectrum", {"wavelengths"}},
         {"beam", {"theta_i", "phi_i"}},
@@ -197,11 +201,7 @@ class Loader {
         if (r.has("input")) {
             // A measured height map replaces generation: generation keys would be unused.
             s.input = r.any_string("input");
-            std::string resolved = s.input;
-            if (!resolved.empty() && resolved[0] != '/') {
-                const size_t slash = file_.find_last_of('/');
-                if (slash != std::string::npos) resolved = file_.substr(0, slash + 1) + resolved;
-            }
+            const std::string resolved = resolve(s.input);
             if (!std::ifstream(resolved)) r.fail("input", "cannot open height map " + resolved);
             s.input = resolved;
             s.edges = r.string("edges", {"periodic", "mirror"}, "periodic");
@@ -230,22 +230,71 @@ class Loader {
         }
     }
 
-    void load_ndf(CaseConfig& c, TableReader all) {
-        c.ndf.type = all.string(
-            "type", {"beckmann", "ggx", "student_t", "generalized_normal", "generalized_t"});
+    void load_ndf(CaseConfig& c, TableReader all) { c.ndf = load_ndf_spec(all, 0); }
+
+    // One distribution; blends, mixtures and sampled curves hold others as nested tables.
+    NdfSpec load_ndf_spec(TableReader all, int depth) {
+        if (depth > 0) all.allow_only(schema().at("ndf"));
+        if (depth > 4) all.fail("type", "distributions nest at most 4 deep");
+        NdfSpec s;
+        s.type = all.string("type", {"beckmann", "ggx", "student_t", "generalized_normal",
+                                     "generalized_t", "gaussian", "piecewise_linear", "sinc",
+                                     "blend", "mixture", "tabulated", "height_map"});
         // Shape parameters of the generalised family [R19 section 2.1], in the ranges where D is
         // bounded and Smith's Lambda finite (see heightfield/ndf/).
-        if (c.ndf.type == "student_t")
-            c.ndf.gamma = all.number("gamma", {StudentT::kGammaMin, StudentT::kGammaMax});
-        if (c.ndf.type == "generalized_normal")
-            c.ndf.p = all.number("p", {GeneralizedNormal::kPMin, GeneralizedNormal::kPMax});
-        if (c.ndf.type == "generalized_t") {
-            c.ndf.p = all.number("p", {GeneralizedT::kPMin, GeneralizedT::kPMax});
-            c.ndf.q = all.number("q", {0, GeneralizedT::kQMax, true, false});
-            if (!(c.ndf.p * c.ndf.q >= 2))
+        if (s.type == "student_t")
+            s.gamma = all.number("gamma", {StudentT::kGammaMin, StudentT::kGammaMax});
+        if (s.type == "generalized_normal")
+            s.p = all.number("p", {GeneralizedNormal::kPMin, GeneralizedNormal::kPMax});
+        if (s.type == "generalized_t") {
+            s.p = all.number("p", {GeneralizedT::kPMin, GeneralizedT::kPMax});
+            s.q = all.number("q", {0, GeneralizedT::kQMax, true, false});
+            if (!(s.p * s.q >= 2))
                 all.fail("q", "p q must be >= 2 (below 2, D diverges at the horizon)");
         }
-        // Roughness keys go together: a case that gives any of them replaces the defaults' ones.
+        if (s.type == "beckmann" || s.type == "ggx" || s.type == "student_t" ||
+            s.type == "generalized_normal" || s.type == "generalized_t")
+            load_alpha(s, all);
+        if (s.type == "gaussian") // M18 Eq. 14; sigma in degrees like every angle of a config
+            s.sigma = radians(all.number(
+                "sigma", {degrees(GaussianAngles::kSigmaMin), degrees(GaussianAngles::kSigmaMax)}));
+        if (s.type == "sinc") {
+            s.k = all.number("k", {0, 200, true, false});
+            s.floor = all.number("floor", {0, 1}, 0.0);
+            s.intervals = static_cast<int>(all.integer("points", {9, 4097}, 129)) - 1;
+        }
+        if (s.type == "piecewise_linear") load_piecewise_linear(s, all, depth);
+        if (s.type == "blend") {
+            for (const char* axis : {"x", "y"}) {
+                s.parts.push_back(load_ndf_spec(all.table(axis), depth + 1));
+                const NdfSpec& part = s.parts.back();
+                const bool isotropic = part.alpha_x == part.alpha_y && part.type != "blend" &&
+                                       part.type != "mixture" && part.type != "tabulated" &&
+                                       part.type != "height_map";
+                if (!isotropic)
+                    all.fail(axis, "must be an isotropic curve (one alpha; not a blend, mixture "
+                                   "or table) [R19 Eq. 10]");
+            }
+        }
+        if (s.type == "mixture") {
+            for (TableReader& part : all.table_list("components"))
+                s.parts.push_back(load_ndf_spec(part, depth + 1));
+            s.weights = all.number_list("weights", {0, 1e300, true, false},
+                                        std::vector<double>(s.parts.size(), 1.0));
+            if (s.weights.size() != s.parts.size())
+                all.fail("weights", "has " + std::to_string(s.weights.size()) +
+                                        " values; give one per component (" +
+                                        std::to_string(s.parts.size()) + ")");
+        }
+        if (s.type == "tabulated" || s.type == "height_map") {
+            s.file = resolve(all.any_string("file"));
+            if (!std::ifstream(s.file)) all.fail("file", "cannot open " + s.file);
+        }
+        return s;
+    }
+
+    // Roughness keys go together: a case that gives any of them replaces the defaults' ones.
+    void load_alpha(NdfSpec& s, TableReader& all) {
         const bool own = all.has_own("alpha") || all.has_own("alpha_x") || all.has_own("alpha_y");
         TableReader r = own ? all.own() : all;
         const bool iso = r.has("alpha");
@@ -253,14 +302,41 @@ class Loader {
         if (iso && aniso)
             r.fail("alpha", "give either alpha or both alpha_x and alpha_y, not both");
         if (iso) {
-            c.ndf.alpha_x = c.ndf.alpha_y = r.number("alpha", kAlpha);
+            s.alpha_x = s.alpha_y = r.number("alpha", kAlpha);
         } else if (aniso) {
-            c.ndf.alpha_x = r.number("alpha_x", kAlpha);
-            c.ndf.alpha_y = r.number("alpha_y", kAlpha);
+            s.alpha_x = r.number("alpha_x", kAlpha);
+            s.alpha_y = r.number("alpha_y", kAlpha);
         } else {
             r.fail("alpha", "missing: give alpha (isotropic) or alpha_x and alpha_y; allowed " +
                                 kAlpha.describe());
         }
+    }
+
+    // R19 Eq. 11: control points given (theta in degrees, from 0 to 90, and values), or sampled
+    // from another distribution at `points` angles.
+    void load_piecewise_linear(NdfSpec& s, TableReader& all, int depth) {
+        if (all.has("source")) {
+            s.parts.push_back(load_ndf_spec(all.table("source"), depth + 1));
+            s.intervals = static_cast<int>(all.integer("points", {3, 4097}, 65)) - 1;
+            return;
+        }
+        if (!all.has("theta"))
+            all.fail("theta", "missing: give theta (degrees, 0 to 90) and value, or a source "
+                              "distribution to sample");
+        for (double t : all.number_list("theta", {0, 90})) s.theta.push_back(radians(t));
+        s.value = all.number_list("value", {0, 1e300});
+        try {
+            PiecewiseLinearNdf check(ControlPoints{s.theta, s.value});
+        } catch (const std::invalid_argument& e) {
+            all.fail("theta", e.what());
+        }
+    }
+
+    // A path relative to the config file's directory.
+    std::string resolve(const std::string& path) const {
+        if (path.empty() || path[0] == '/') return path;
+        const size_t slash = file_.find_last_of('/');
+        return slash == std::string::npos ? path : file_.substr(0, slash + 1) + path;
     }
 
     // A per-channel list: a single value (achromatic) or one value per wavelength.

@@ -2,6 +2,7 @@
 
 #include "gonio/config/config_error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -198,6 +199,41 @@ std::vector<double> TableReader::number_list(const std::string& key, const Range
     }
     out.push_back(as_number(n, key, range));
     return out;
+}
+
+TableReader TableReader::table(const std::string& key) {
+    const toml::node& n = require(key);
+    if (!n.is_table())
+        fail(key, "must be a table, e.g. " + key + " = { type = \"ggx\", alpha = 0.3 }");
+    return TableReader(n.as_table(), key_path(key), nullptr, "", file_, usage_);
+}
+
+std::vector<TableReader> TableReader::table_list(const std::string& key) {
+    const toml::node& n = require(key);
+    const toml::array* arr = n.as_array();
+    if (!arr || arr->empty() || !arr->is_array_of_tables())
+        fail(key, "must be a non-empty array of tables, e.g. [{ type = \"ggx\", alpha = 0.3 }]");
+    std::vector<TableReader> out;
+    const std::string path = key_path(key);
+    for (size_t i = 0; i < arr->size(); ++i)
+        out.emplace_back((*arr)[i].as_table(), path + "[" + std::to_string(i) + "]", nullptr, "",
+                         file_, usage_);
+    return out;
+}
+
+void TableReader::allow_only(const std::vector<std::string>& allowed) const {
+    if (!section_) return;
+    for (const auto& [k, v] : *section_) {
+        const std::string key(k.str());
+        if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+        std::string list;
+        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        const std::string guess = closest_name(key, allowed.data(), allowed.size());
+        throw ConfigError(file_, static_cast<int>(v.source().begin.line), section_path_ + "." + key,
+                          "unknown key" +
+                              (guess.empty() ? "" : " (did you mean '" + guess + "'?)") +
+                              "; allowed here: " + list);
+    }
 }
 
 } // namespace gonio

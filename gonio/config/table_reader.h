@@ -58,6 +58,12 @@ class TableReader {
     std::vector<double> number_list(const std::string& key, const Range& range,
                                     std::optional<std::vector<double>> fallback = std::nullopt);
     bool is_string(const std::string& key) const;
+    // A nested table (inline or not) as a reader of its own, without defaults; marks it used.
+    TableReader table(const std::string& key);
+    // Each table of an array of tables (e.g. a mixture's components), at least one.
+    std::vector<TableReader> table_list(const std::string& key);
+    // Rejects any key of this reader's own section not in `allowed`, suggesting the closest.
+    void allow_only(const std::vector<std::string>& allowed) const;
 
     [[noreturn]] void fail(const std::string& key, const std::string& problem) const;
 

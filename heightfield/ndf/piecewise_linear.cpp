@@ -35,6 +35,16 @@ double evaluate(const ControlPoints& p, double theta) {
 
 RadialProfile profile(ControlPoints& p, std::string name, std::string parameters) {
     validate(p);
+    if (parameters.empty()) { // user-given points: all of them, so that describe() is unique
+        std::ostringstream s;
+        s.precision(17);
+        s << "theta_deg=[";
+        for (size_t i = 0; i < p.theta.size(); ++i) s << (i ? ", " : "") << p.theta[i] * 180 / kPi;
+        s << "], value=[";
+        for (size_t i = 0; i < p.value.size(); ++i) s << (i ? ", " : "") << p.value[i];
+        s << "]";
+        parameters = s.str();
+    }
     const double c = piecewise_linear_normalisation(p);
     if (!(c > 0)) throw std::invalid_argument("piecewise_linear: the curve is zero everywhere");
     for (double& v : p.value) v /= c;

@@ -1,11 +1,11 @@
 #include "heightfield/ndf/radial_ndf.h"
 
+#include "core/catmull_rom.h"
 #include "core/quadrature.h"
 #include "core/random.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -13,12 +13,6 @@ namespace gonio {
 
 namespace {
 constexpr int kLambdaIntervals = 1024; // polar angles of the Lambda table, minus one
-
-std::uint64_t bits(double v) {
-    std::uint64_t b;
-    std::memcpy(&b, &v, sizeof b);
-    return b;
-}
 } // namespace
 
 std::string parameter_list(std::initializer_list<std::pair<const char*, double>> values) {
@@ -82,14 +76,7 @@ double RadialNdf::d_unit(double r2, double cos2) const {
 }
 
 double RadialNdf::g_of_theta(double theta) const {
-    // Cubic (Catmull-Rom) interpolation on the uniform polar-angle grid.
-    const double x = std::clamp(theta / (0.5 * kPi), 0.0, 1.0) * kLambdaIntervals;
-    const int i = std::min(static_cast<int>(x), kLambdaIntervals - 1);
-    const double t = x - i;
-    auto at = [&](int k) { return g_[std::clamp(k, 0, kLambdaIntervals)]; };
-    const double p0 = at(i - 1), p1 = at(i), p2 = at(i + 1), p3 = at(i + 2);
-    return p1 + 0.5 * t *
-                    (p2 - p0 + t * (2 * p0 - 5 * p1 + 4 * p2 - p3 + t * (3 * (p1 - p2) + p3 - p0)));
+    return catmull_rom(g_, std::clamp(theta / (0.5 * kPi), 0.0, 1.0) * kLambdaIntervals);
 }
 
 double RadialNdf::lambda_unit(double t2) const {
@@ -106,7 +93,7 @@ double RadialNdf::sample_slope_radius2(double u) const {
 
 void RadialNdf::sample_visible_slope(double c, double u1, double u2, double& x, double& y) const {
     const double sin_t = std::sqrt(std::max(0.0, 1.0 - c * c));
-    Rng rng{bits(u1), bits(u2), 0x76697369626c65ull};
+    Rng rng{bits_of(u1), bits_of(u2), 0x76697369626c65ull};
     if (sin_t == 0) { // seen from the normal: visible normals are distributed as D cos
         const double r = radius_->sample(u1), phi = kTwoPi * u2;
         x = r * std::cos(phi), y = r * std::sin(phi);

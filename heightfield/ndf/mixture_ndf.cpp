@@ -1,0 +1,96 @@
+#include "heightfield/ndf/mixture_ndf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace gonio {
+
+namespace {
+// Index chosen by u among `w` (summing to total), and u rescaled to [0, 1) within its share.
+size_t pick(const std::vector<double>& w, double total, double& u) {
+    double x = u * total;
+    for (size_t k = 0; k + 1 < w.size(); ++k) {
+        if (x < w[k]) {
+            u = std::min(x / w[k], std::nextafter(1.0, 0.0));
+            return k;
+        }
+        x -= w[k];
+    }
+    u = std::clamp(x / w.back(), 0.0, std::nextafter(1.0, 0.0));
+    return w.size() - 1;
+}
+} // namespace
+
+MixtureNdf::MixtureNdf(std::vector<std::unique_ptr<Ndf>> components, std::vector<double> weights)
+    : components_(std::move(components)), weights_(std::move(weights)) {
+    if (components_.empty()) throw std::invalid_argument("mixture: needs at least one component");
+    if (weights_.size() != components_.size())
+        throw std::invalid_argument("mixture: needs one weight per component (" +
+                                    std::to_string(components_.size()) + ")");
+    double total = 0;
+    for (double w : weights_) {
+        if (!(w > 0) || !std::isfinite(w))
+            throw std::invalid_argument("mixture: weights must be positive and finite");
+        total += w;
+    }
+    for (double& w : weights_) w /= total;
+    for (const auto& c : components_)
+        if (!c) throw std::invalid_argument("mixture: missing component");
+}
+
+double MixtureNdf::D(const Vec3& m) const {
+    double d = 0;
+    for (size_t k = 0; k < components_.size(); ++k) d += weights_[k] * components_[k]->D(m);
+    return d;
+}
+
+double MixtureNdf::lambda(const Vec3& v) const {
+    double area = 0; // I(v) / cos theta_v = 1 + Lambda [R19 section 3.1]
+    for (size_t k = 0; k < components_.size(); ++k) {
+        const double l = components_[k]->lambda(v);
+        if (std::isinf(l)) return std::numeric_limits<double>::infinity();
+        area += weights_[k] * (1 + l);
+    }
+    return std::max(0.0, area - 1.0);
+}
+
+Vec3 MixtureNdf::sample_m(double u1, double u2) const {
+    const size_t k = pick(weights_, 1.0, u1);
+    return components_[k]->sample_m(u1, u2);
+}
+
+Vec3 MixtureNdf::sample_visible(const Vec3& v, double u1, double u2) const {
+    std::vector<double> share(components_.size());
+    double total = 0;
+    for (size_t k = 0; k < components_.size(); ++k)
+        total += share[k] = weights_[k] * (1 + components_[k]->lambda(v));
+    const size_t k = pick(share, total, u1);
+    return components_[k]->sample_visible(v, u1, u2);
+}
+
+std::string MixtureNdf::describe() const {
+    std::ostringstream s;
+    s.precision(17);
+    s << "mixture(";
+    for (size_t k = 0; k < components_.size(); ++k)
+        s << (k ? "; " : "") << weights_[k] << " x " << components_[k]->describe();
+    s << ")";
+    return s.str();
+}
+
+double MixtureNdf::narrowest_feature() const {
+    double n = std::numeric_limits<double>::infinity();
+    for (const auto& c : components_) n = std::min(n, c->narrowest_feature());
+    return n;
+}
+
+double MixtureNdf::widest_feature() const {
+    double w = 0;
+    for (const auto& c : components_) w = std::max(w, c->widest_feature());
+    return w;
+}
+
+} // namespace gonio
