@@ -345,11 +345,21 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
     SlicedWork work;
     std::vector<int> assigned;
     std::vector<float> h, gp, gq;
-    if (sliced) {
-        if (!ndf.slope_stretch(ax, ay))
-            throw std::invalid_argument(
-                "the sliced-matching generator needs a shape-invariant NDF; "
-                "use generator = \"algorithm1\"");
+    // A shape-invariant target is isotropic once stretched: one projected marginal for every
+    // direction, sorted once. Any other (blends, mixtures, tables) is projected and sorted again
+    // along each iteration's direction, in plain slope space.
+    const bool per_direction = sliced && !ndf.slope_stretch(ax, ay);
+    auto direction_quantiles = [&](double psi) {
+        std::vector<float> proj(cells);
+        const float c = float(std::cos(psi)), sn = float(std::sin(psi));
+        tbb::parallel_for(size_t(0), cells,
+                          [&](size_t k) { proj[k] = pool_p[k] * c + pool_q[k] * sn; });
+        tbb::parallel_sort(proj.begin(), proj.end());
+        return std::make_unique<Quantiles>(std::move(proj));
+    };
+    if (per_direction) {
+        // quantile is made per iteration
+    } else if (sliced) {
         // The target's 1-D marginal in the stretched frame, where it is isotropic: both stretched
         // components of the pool sample it, 2 n^2 values.
         std::vector<float> marginal;
@@ -381,8 +391,9 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
     for (int it = 0; it < spec.iterations; ++it) {
         const auto t = Clock::now();
         if (sliced) {
-            sliced_step(fc.heights(), n, ax, ay, it * 2.39996322972865332 /* golden angle */,
-                        *quantile, work, p, q);
+            const double psi = it * 2.39996322972865332; // golden angle
+            if (per_direction) quantile = direction_quantiles(psi);
+            sliced_step(fc.heights(), n, ax, ay, psi, *quantile, work, p, q);
         } else {
             h.assign(fc.heights(), fc.heights() + cells);
             differentiate(h, n, gp, gq); // the integrated surface's gradient, grad h+

@@ -2,9 +2,12 @@
 #include "heightfield/exr_io.h"
 #include "heightfield/frankot_chellappa.h"
 #include "heightfield/generate.h"
+#include "heightfield/ndf/anisotropic_blend.h"
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/generalized_normal.h"
 #include "heightfield/ndf/ggx.h"
+#include "heightfield/ndf/mixture_ndf.h"
+#include "heightfield/ndf/sinc_ndf.h"
 #include "heightfield/ndf/student_t.h"
 #include "heightfield/surface_metrics.h"
 #include "heightfield/surface_source.h"
@@ -111,6 +114,30 @@ TEST_CASE("sliced matching: heavy-tailed Student's t and peaked generalised norm
     check_fidelity(make(heavy, "sliced-matching"), heavy, 0.5, 0.5, 0);
     const GeneralizedNormal peaked(0.4, 0.4, 1.0);
     check_fidelity(make(peaked, "sliced-matching"), peaked, 0.4, 0.4, 0);
+}
+
+TEST_CASE("sliced matching: a multi-lobe sinc curve and two anisotropic blends [R19 Eq. 10]") {
+    // The sinc curve is shape-invariant (alpha = 1); the blends are not, so their target is
+    // projected and sorted along each direction. alpha_eff is then the median-slope ratio to D.
+    // Bar: 2.5 x the ideal sample's mean TV. These slope distributions are not elliptical (rings
+    // of lobes; a blend's cos^2 phi mix), and integration pulls the gradient field towards an
+    // elliptical one: the TV stays at 1.5-1.9 x the ideal from 100 to 2000 iterations and at
+    // 100 bins does not fall with the size (0.024 for the sinc, 0.035 for the GGX/Beckmann blend
+    // at 256^2 and 512^2), while an elliptical target through the same per-direction path (a
+    // one-component mixture of anisotropic Beckmann) reaches the ideal. Recorded in the README.
+    const SincNdf sinc(6.0, 0.05, 128);
+    check_fidelity(make(sinc, "sliced-matching"), sinc, 1, 1, 2.5);
+    const AnisotropicBlend ggx_beckmann(std::make_unique<Ggx>(0.5, 0.5),
+                                        std::make_unique<Beckmann>(0.25));
+    check_fidelity(make(ggx_beckmann, "sliced-matching"), ggx_beckmann, 1, 1, 2.5);
+    const AnisotropicBlend sincs(std::make_unique<SincNdf>(6.0, 0.05, 128),
+                                 std::make_unique<SincNdf>(3.5, 0.02, 96));
+    check_fidelity(make(sincs, "sliced-matching"), sincs, 1, 1, 2.5);
+    // The per-direction path itself is exact for an elliptical target.
+    std::vector<std::unique_ptr<Ndf>> one;
+    one.push_back(std::make_unique<Beckmann>(0.2, 0.6));
+    const MixtureNdf wrapped(std::move(one), {1.0});
+    check_fidelity(make(wrapped, "sliced-matching"), wrapped, 1, 1, 0);
 }
 
 TEST_CASE("sliced matching keeps the axes of an anisotropic NDF") {
