@@ -63,6 +63,15 @@ int main(int argc, char** argv) {
     run_cmd->add_option("--threads", run.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(0, 1024));
 
+    gonio::NdfOptions ndf;
+    CLI::App* ndf_cmd = app.add_subcommand(
+        "ndf", "Print each case's D and Lambda along phi = 0 and 90 deg and its Model L1 albedo");
+    ndf_cmd->add_option("config", ndf.config, "TOML config file")->required();
+    ndf_cmd->add_option("--csv", ndf.csv, "Write the curves (0.5 deg steps) to this CSV file");
+    ndf_cmd->add_option("--set", ndf.overrides, "Override a config key: key.path=value");
+    ndf_cmd->add_option("--threads", ndf.threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(0, 1024));
+
     std::string compare_path;
     CLI::App* compare_cmd =
         app.add_subcommand("compare", "Print the Model-vs-simulated table of a result file");
@@ -84,6 +93,7 @@ int main(int argc, char** argv) {
         if (*model_cmd) return gonio::run_model_command(model);
         if (*surface_cmd) return gonio::run_surface_command(surface);
         if (*run_cmd) return gonio::run_run_command(run);
+        if (*ndf_cmd) return gonio::run_ndf_command(ndf);
         if (*compare_cmd) return gonio::run_compare_command(compare_path);
         if (*info_cmd) return gonio::run_info_command(info_path, info_json);
     } catch (const gonio::ConfigError& e) {

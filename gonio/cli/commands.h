@@ -44,6 +44,15 @@ struct RunOptions {
 // `gonio run`: trace every case and incidence on the explicit surface; write HDF5.
 int run_run_command(const RunOptions& options);
 
+struct NdfOptions {
+    std::string config;
+    std::string csv; // optional: the curves at 0.5 degree steps
+    std::vector<std::string> overrides;
+    int threads = 0;
+};
+// `gonio ndf`: each case's D and Lambda along phi = 0 and pi/2, and its Model L1 albedo.
+int run_ndf_command(const NdfOptions& options);
+
 // `gonio compare FILE`: the Model-vs-simulated table of a result file.
 int run_compare_command(const std::string& path);
 
