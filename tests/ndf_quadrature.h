@@ -15,11 +15,15 @@ namespace gonio::test {
 
 // Integral over the upper hemisphere of g(m) dw_m, g smooth except at the breakpoints.
 // `scale` is the narrowest angular feature of g; `v`, if v.z < 1, adds the great circle v.m = 0.
-// `kinks`: polar angles where g is not smooth (the control points of a piecewise-linear NDF).
+// `kinks`: polar angles where g is not smooth (the control points of a piecewise-linear NDF);
+// `phi_kinks`: azimuths where it is not (the columns of a table).
 inline double hemisphere_integral(const std::function<double(const Vec3&)>& g, double scale,
                                   const Vec3* v = nullptr, double tol = 1e-11,
-                                  const std::vector<double>& kinks = {}) {
+                                  const std::vector<double>& kinks = {},
+                                  const std::vector<double>& phi_kinks = {}) {
     std::vector<double> phi_breaks{0.0, kTwoPi};
+    for (double p : phi_kinks)
+        if (p > 0 && p < kTwoPi) phi_breaks.push_back(p);
     double phi_v = 0, sin_v = 0;
     if (v) {
         phi_v = spherical_phi(*v);
@@ -43,7 +47,8 @@ inline double hemisphere_integral(const std::function<double(const Vec3&)>& g, d
         double sum = 0;
         for (size_t k = 0; k + 1 < breaks.size(); ++k) {
             const double a = breaks[k], b = std::min(breaks[k + 1], top);
-            if (b <= a) break;
+            if (a >= top) break;
+            if (b <= a) continue; // a break point given twice (a kink at a multiple of scale)
             sum += integrate_adaptive(
                 [&](double t) { return g(spherical_direction(t, phi)) * std::sin(t); }, a, b, 1e-15,
                 tol);

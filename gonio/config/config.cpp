@@ -4,9 +4,11 @@
 #include "gonio/config/overrides.h"
 #include "gonio/config/table_reader.h"
 #include "gonio/material/ior_table.h"
+#include "heightfield/exr_io.h"
 #include "heightfield/ndf/gaussian_angles.h"
 #include "heightfield/ndf/generalized_normal.h"
 #include "heightfield/ndf/generalized_t.h"
+#include "heightfield/ndf/ndf_table.h"
 #include "heightfield/ndf/piecewise_linear.h"
 #include "heightfield/ndf/student_t.h"
 
@@ -30,8 +32,9 @@ const std::map<std::string, std::vector<std::string>>& schema() {
         {"case",
          {"name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface", "trace"}},
         {"ndf",
-         {"type", "alpha", "alpha_x", "alpha_y", "gamma", "p", "q", "sigma", "k", "floor", "points",
-          "theta", "value", "source", "x", "y", "components", "weights", "file"}},
+         {"type",       "alpha",   "alpha_x", "alpha_y",         "gamma",    "p",      "q", "sigma",
+          "k",          "floor",   "points",  "theta",           "value",    "source", "x", "y",
+          "components", "weights", "file",    "theta_intervals", "phi_count"}},
         {"material", {"type", "eta", "ior", "n", "k", "f0", "albedo"}},
         {"spectrum", {"wavelengths"}},
         {"beam", {"theta_i", "phi_i"}},
@@ -289,6 +292,18 @@ class Loader {
         if (s.type == "tabulated" || s.type == "height_map") {
             s.file = resolve(all.any_string("file"));
             if (!std::ifstream(s.file)) all.fail("file", "cannot open " + s.file);
+            try { // a bad table or height map is reported now, not after other cases ran
+                if (s.type == "tabulated")
+                    read_ndf_table(s.file);
+                else
+                    read_height_exr(s.file);
+            } catch (const std::exception& e) {
+                all.fail("file", e.what());
+            }
+        }
+        if (s.type == "height_map") { // the facet table's grid
+            s.theta_intervals = static_cast<int>(all.integer("theta_intervals", {2, 900}, 45));
+            s.phi_count = static_cast<int>(all.integer("phi_count", {1, 3600}, 36));
         }
         return s;
     }

@@ -1,5 +1,6 @@
 #include "heightfield/ndf/make_ndf.h"
 
+#include "heightfield/exr_io.h"
 #include "heightfield/ndf/anisotropic_blend.h"
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/gaussian_angles.h"
@@ -10,6 +11,7 @@
 #include "heightfield/ndf/piecewise_linear.h"
 #include "heightfield/ndf/sinc_ndf.h"
 #include "heightfield/ndf/student_t.h"
+#include "heightfield/ndf/tabulated_ndf.h"
 
 #include <stdexcept>
 
@@ -43,6 +45,12 @@ std::unique_ptr<Ndf> make_ndf(const NdfSpec& spec) {
         for (const NdfSpec& p : spec.parts) parts.push_back(make_ndf(p));
         return std::make_unique<MixtureNdf>(std::move(parts), spec.weights);
     }
+    if (spec.type == "tabulated")
+        return std::make_unique<TabulatedNdf>(read_ndf_table(spec.file), spec.file);
+    if (spec.type == "height_map")
+        return std::make_unique<TabulatedNdf>(
+            facet_ndf_table(read_height_exr(spec.file), spec.theta_intervals, spec.phi_count),
+            spec.file, "height_map");
     throw std::invalid_argument("unknown NDF type '" + spec.type + "'");
 }
 

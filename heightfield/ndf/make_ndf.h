@@ -26,6 +26,8 @@ struct NdfSpec {
     std::vector<NdfSpec> parts;
     std::vector<double> weights; // mixture
     std::string file;            // tabulated (text or HDF5 table), height_map (EXR)
+    int theta_intervals = 45;    // height_map: the facet table's grid (2 degrees)
+    int phi_count = 36;          // (10 degrees)
 };
 
 // Throws std::invalid_argument (or std::runtime_error for an unreadable file) on bad parameters.
