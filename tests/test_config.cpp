@@ -2,7 +2,10 @@
 #include "gonio/config/config_error.h"
 
 #include <doctest/doctest.h>
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <unistd.h>
 
 using namespace gonio;
 
@@ -338,4 +341,28 @@ source = { type = "student_t", alpha = 0.4, gamma = 3 }
     CHECK(contains(error("[ndf]\ntype = \"gaussian\"\nsigma = 120\n"), "key 'ndf.sigma'"));
     CHECK(contains(error("[ndf]\ntype = \"tabulated\"\nfile = \"nowhere.txt\"\n"),
                    "cannot open nowhere.txt"));
+}
+
+TEST_CASE("tabulated NDFs in a config: the file is found next to the config and checked") {
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("gonio_cfg_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "good.txt") << "# isotropic: one column\n1\n0.5\n0.1\n0\n";
+    std::ofstream(dir / "bad.txt") << "1 1\n1\n";
+    const std::string config = (dir / "c.toml").string();
+    std::ofstream(config)
+        << "[beam]\ntheta_i = 30\n[ndf]\ntype = \"tabulated\"\nfile = \"good.txt\"\n";
+    const Config cfg = load_config(config);
+    CHECK(cfg.cases[0].ndf.file == (dir / "good.txt").string());
+    CHECK(make_ndf(cfg.cases[0].ndf)->name() == "tabulated");
+    std::ofstream(config)
+        << "[beam]\ntheta_i = 30\n[ndf]\ntype = \"tabulated\"\nfile = \"bad.txt\"\n";
+    try {
+        load_config(config);
+        FAIL("a ragged table was accepted");
+    } catch (const ConfigError& e) {
+        CHECK(contains(e.what(), "key 'ndf.file'"));
+        CHECK(contains(e.what(), "line 2 has 1 values"));
+    }
+    std::filesystem::remove_all(dir);
 }
