@@ -50,19 +50,18 @@ struct RealFft {
     RealFft& operator=(const RealFft&) = delete;
 };
 
-// Fourier coefficients k_n = (1/2pi) int max(0, a + b cos psi) cos(n psi) dpsi, n = 0 .. h, for
-// a >= 0, b >= 0: where a < b only |psi| < C = acos(-a/b) counts [R19 Eq. 14].
+// Fourier coefficients k_n = (1/2pi) int max(0, -(a + b cos psi)) cos(n psi) dpsi, n = 0 .. h,
+// for a >= 0, b >= 0: the back-facing part of <o.m>, nonzero only where a < b, for
+// |psi| > C = acos(-a/b) [R19 Eq. 14]. (<o.m> = o.m + this, and int (o.m) D dw = o.M.)
 void kernel_coefficients(double a, double b, int h, std::vector<double>& k) {
     k.assign(size_t(h) + 1, 0.0);
-    if (a >= b) {
-        k[0] = a;
-        if (h >= 1) k[1] = 0.5 * b;
-        return;
-    }
+    if (a >= b) return;
     const double c = std::acos(std::clamp(-a / b, -1.0, 1.0)), inv = 1.0 / kTwoPi;
     const double s1 = std::sin(c), c1 = std::cos(c);
-    k[0] = inv * 2 * (a * c + b * s1);
-    if (h >= 1) k[1] = inv * (2 * a * s1 + b * (c + s1 * c1));
+    // The clamped kernel's coefficients minus those of a + b cos psi (a and b / 2), written
+    // without cancellation: both vanish as C -> pi.
+    k[0] = inv * 2 * (b * s1 - a * (kPi - c));
+    if (h >= 1) k[1] = inv * (2 * a * s1 - b * (kPi - c - s1 * c1));
     // sin(n C) by the Chebyshev recurrence sin((n+1)C) = 2 cos C sin(nC) - sin((n-1)C).
     double prev = s1, cur = 2 * c1 * s1; // sin C, sin 2C
     for (int n = 2; n <= h; ++n) {
@@ -145,6 +144,18 @@ TabulatedNdf::TabulatedNdf(NdfTable table, std::string source, std::string kind)
             }
         }
     }
+    // M = int m D dw (0 for a distribution symmetric under phi -> phi + pi): its x and y from
+    // the first harmonic, int cos(phi) D dphi = 2 pi Re D_1, int sin(phi) D dphi = -2 pi Im D_1.
+    mean_x_ = mean_y_ = 0;
+    if (h >= 1)
+        for (int j = 0; j < nt; ++j)
+            for (size_t q = 0; q < g.nodes.size(); ++q) {
+                const double s = 0.5 * (1 + g.nodes[q]), th = (j + s) * dt_;
+                const std::complex<double> d1 =
+                    (1 - s) * rows[size_t(j) * (h + 1) + 1] + s * rows[size_t(j + 1) * (h + 1) + 1];
+                const double w = 0.5 * dt_ * g.weights[q] * std::sin(th) * std::sin(th) * kTwoPi;
+                mean_x_ += w * d1.real(), mean_y_ -= w * d1.imag();
+            }
     projected_.assign(size_t(it_ + 1) * ip_, 0.0);
     const GaussLegendre& gq = gauss_legendre(kNodes);
     tbb::parallel_for(0, it_ + 1, [&](int i) {
@@ -223,8 +234,9 @@ double TabulatedNdf::lambda(const Vec3& v) const {
     }
     if (i == 0) p[0] = 3 * p[1] - 3 * p[2] + p[3];
     if (i + 2 > it_) p[3] = 3 * p[2] - 3 * p[1] + p[0];
-    const double projected = cubic(p[0], p[1], p[2], p[3], tx);
-    return std::max(0.0, projected / v.z - 1.0); // R19 section 3.1
+    const double back = std::max(0.0, cubic(p[0], p[1], p[2], p[3], tx));
+    // I = o.M + back and Lambda = I / cos theta_o - 1 [R19 section 3.1], with M_z = 1.
+    return std::max(0.0, (v.x * mean_x_ + v.y * mean_y_ + back) / v.z);
 }
 
 Vec3 TabulatedNdf::sample_weighted(bool cos_weight, double u1, double u2) const {

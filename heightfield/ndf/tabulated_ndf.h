@@ -7,8 +7,10 @@
 // - D cos sampling (and D sin, for visible normals): a cell by its exact mass, then in the cell
 //   theta from the weight (sin^2 theta uniform for cos sin), phi uniform, accepted with the
 //   bilinear value over the cell's largest corner: exact.
-// - Lambda from the projected area I(o) = int <o.m> D dw [R19 Eq. 13]: for each theta_m the
-//   azimuthal integral is a circular convolution of D(theta_m, .) with max(0, a + b cos psi), done
+// - Lambda from the projected area I(o) = int <o.m> D dw [R19 Eq. 13] = o.M + int max(0, -o.m) D dw
+//   with M = int m D dw: the second term (exactly 0 until o sees the table's support from behind,
+//   so Lambda has no round-off near the pole) is, for each theta_m, a circular convolution of
+//   D(theta_m, .) with max(0, -(a + b cos psi)), done
 //   on Fourier series (the piecewise-linear rows' spectra by FFTW, damped by sinc^2; the kernel's
 //   in closed form on the split domain of R19 Eq. 14), then Gauss-Legendre over theta_m. I is
 //   tabulated on a fine (theta_o, phi_o) grid and interpolated bicubically.
@@ -51,7 +53,8 @@ class TabulatedNdf final : public Ndf {
     std::vector<double> cdf_cos_, cdf_sin_; // cumulative cell masses, per cell j * phi_count + k
     double sin_mass_ = 0;                   // int D sin theta_m dw
     int it_, ip_;                           // I table: theta_o intervals, phi_o samples
-    std::vector<double> projected_;         // I(theta_o, phi_o), row-major
+    std::vector<double> projected_;         // back-facing part of I(theta_o, phi_o), row-major
+    double mean_x_ = 0, mean_y_ = 0;        // x and y of M = int m D dw
 };
 
 } // namespace gonio
