@@ -3,10 +3,12 @@
 // bin samples on an equal-area Beckers partition of the hemisphere, integrate the pdf over every
 // cell for the expected counts, pool low-count cells, and return Pearson's statistic and p-value.
 #include "core/chi_square.h"
+#include "core/quadrature.h"
 #include "core/random.h"
 #include "sensor/beckers_sensor.h"
 #include "sensor/cell_integral.h"
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -35,8 +37,26 @@ inline DirectionChiSquare chi_square_directions(const std::function<Vec3(double,
         }
         observed[sensor.lookup(d)] += 1;
     }
-    // Expected counts: the pdf integrated over each cell.
-    const std::vector<double> mass = integrate_over_cells(sensor, pdf);
+    // Expected counts: the pdf integrated over each cell. Cells on the horizon get adaptive
+    // integrals on pieces shrinking geometrically towards cos theta = 0, where a visible-normal pdf
+    // may grow like 1 / cos theta (distributions with D ~ 1 / cos, cut near the horizon).
+    std::vector<double> mass = integrate_over_cells(sensor, pdf);
+    for (int c = 0; c < cells; ++c) {
+        const SensorCell& cell = sensor.cell(c);
+        if (cell.theta_max < 0.5 * kPi - 1e-12) continue;
+        auto ring = [&](double z) {
+            const double r = std::sqrt(std::max(0.0, 1 - z * z));
+            return integrate_adaptive(
+                [&](double p) {
+                    return pdf({r * std::cos(p), r * std::sin(p), z});
+                },
+                cell.phi_min, cell.phi_max, 1e-15, 1e-6);
+        };
+        double sum = 0, hi = std::cos(cell.theta_min);
+        for (; hi > 1e-9; hi *= 0.25) // expected counts to ~1e-6: far below their noise
+            sum += integrate_adaptive(ring, 0.25 * hi, hi, 1e-15, 1e-6);
+        mass[c] = sum;
+    }
     double total = 0;
     for (int c = 0; c < cells; ++c) {
         expected[c] = mass[c] * samples;

@@ -31,10 +31,10 @@ const std::map<std::string, std::vector<std::string>>& schema() {
           "trace", "case"}},
         {"case",
          {"name", "ndf", "material", "spectrum", "beam", "sensor", "model", "surface", "trace"}},
-        {"ndf",
-         {"type",       "alpha",   "alpha_x", "alpha_y",         "gamma",    "p",      "q", "sigma",
-          "k",          "floor",   "points",  "theta",           "value",    "source", "x", "y",
-          "components", "weights", "file",    "theta_intervals", "phi_count"}},
+        {"ndf", {"type",  "alpha",           "alpha_x",   "alpha_y",  "gamma",      "p",
+                 "q",     "sigma",           "k",         "floor",    "points",     "theta",
+                 "value", "source",          "x",         "y",        "components", "weights",
+                 "file",  "theta_intervals", "phi_count", "theta_max"}},
         {"material", {"type", "eta", "ior", "n", "k", "f0", "albedo"}},
         {"spectrum", {"wavelengths"}},
         {"beam", {"theta_i", "phi_i"}},
@@ -261,6 +261,11 @@ class Loader {
         if (s.type == "gaussian") // M18 Eq. 14; sigma in degrees like every angle of a config
             s.sigma = radians(all.number(
                 "sigma", {degrees(GaussianAngles::kSigmaMin), degrees(GaussianAngles::kSigmaMax)}));
+        if (s.type == "gaussian") // the cut that keeps Smith's Lambda finite (gaussian_angles.h)
+            s.theta_max = radians(all.number(
+                "theta_max",
+                {degrees(GaussianAngles::kThetaMaxMin), degrees(GaussianAngles::kThetaMaxMax)},
+                degrees(GaussianAngles::kThetaMaxDefault)));
         if (s.type == "sinc") {
             s.k = all.number("k", {0, 200, true, false});
             s.floor = all.number("floor", {0, 1}, 0.0);

@@ -7,10 +7,10 @@
 
 namespace gonio {
 
-double GaussianAngles::inverse_normalisation(double sigma) {
+double GaussianAngles::inverse_normalisation(double sigma, double theta_max) {
     const double s2 = 2 * sigma * sigma;
     return kTwoPi * integrate_global([s2](double t) { return std::exp(-t * t / s2) * std::sin(t); },
-                                     0.0, kPi / 2, 1e-300, 1e-13); // M18 Eq. 14
+                                     0.0, theta_max, 1e-300, 1e-13); // M18 Eq. 14
 }
 
 double GaussianAngles::inverse_normalisation_series(double sigma) {
@@ -19,24 +19,30 @@ double GaussianAngles::inverse_normalisation_series(double sigma) {
 }
 
 namespace {
-RadialProfile gaussian_profile(double sigma) {
+RadialProfile gaussian_profile(double sigma, double theta_max) {
     if (!(sigma >= GaussianAngles::kSigmaMin && sigma <= GaussianAngles::kSigmaMax))
         throw std::invalid_argument("gaussian: sigma must be in [0.001, 1.5] rad");
+    if (!(theta_max >= GaussianAngles::kThetaMaxMin && theta_max <= GaussianAngles::kThetaMaxMax))
+        throw std::invalid_argument("gaussian: theta_max must be in [60, 89.999] deg");
     RadialProfile f;
     f.name = "gaussian";
-    f.parameters = parameter_list({{"sigma", sigma}});
-    const double c = 1.0 / GaussianAngles::inverse_normalisation(sigma), s2 = 2 * sigma * sigma;
-    f.p22 = [c, s2](double r2) { // D cos^4 = C exp(-theta^2 / 2 sigma^2) cos^3, r = tan theta
+    f.parameters = parameter_list({{"sigma", sigma}, {"theta_max", theta_max}});
+    const double c = 1.0 / GaussianAngles::inverse_normalisation(sigma, theta_max),
+                 s2 = 2 * sigma * sigma, r2_max = std::tan(theta_max) * std::tan(theta_max);
+    f.p22 = [c, s2, r2_max](double r2) { // D cos^4 = C exp(-theta^2 / 2 sigma^2) cos^3
+        if (r2 > r2_max) return 0.0;
         const double theta = std::atan(std::sqrt(r2)), cos = 1.0 / std::sqrt(1.0 + r2);
         return c * std::exp(-theta * theta / s2) * cos * cos * cos;
     };
+    f.kinks = {std::tan(theta_max)};
     f.bulk = std::tan(std::min(sigma, 1.2));
     f.narrow = f.wide = sigma;
     return f;
 }
 } // namespace
 
-GaussianAngles::GaussianAngles(double sigma)
-    : RadialNdf(1.0, 1.0, gaussian_profile(sigma)), sigma_(sigma) {}
+GaussianAngles::GaussianAngles(double sigma, double theta_max)
+    : RadialNdf(1.0, 1.0, gaussian_profile(sigma, theta_max)), sigma_(sigma),
+      theta_max_(theta_max) {}
 
 } // namespace gonio

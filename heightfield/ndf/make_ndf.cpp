@@ -26,7 +26,8 @@ std::unique_ptr<Ndf> make_ndf(const NdfSpec& spec) {
         return std::make_unique<GeneralizedNormal>(spec.alpha_x, spec.alpha_y, spec.p);
     if (spec.type == "generalized_t")
         return std::make_unique<GeneralizedT>(spec.alpha_x, spec.alpha_y, spec.p, spec.q);
-    if (spec.type == "gaussian") return std::make_unique<GaussianAngles>(spec.sigma);
+    if (spec.type == "gaussian")
+        return std::make_unique<GaussianAngles>(spec.sigma, spec.theta_max);
     if (spec.type == "sinc") return std::make_unique<SincNdf>(spec.k, spec.floor, spec.intervals);
     if (spec.type == "piecewise_linear") {
         if (spec.parts.empty())

@@ -14,12 +14,13 @@ struct NdfSpec {
     std::string type = "beckmann";
     double alpha_x = 0.5;
     double alpha_y = 0.5;
-    double gamma = 2;    // student_t
-    double p = 2;        // generalized_normal, generalized_t
-    double q = 1;        // generalized_t
-    double sigma = 0.2;  // gaussian, radians
-    double k = 6;        // sinc, per radian
-    double floor = 0;    // sinc, relative to the peak
+    double gamma = 2;                    // student_t
+    double p = 2;                        // generalized_normal, generalized_t
+    double q = 1;                        // generalized_t
+    double sigma = 0.2;                  // gaussian, radians
+    double theta_max = 89.9 * kPi / 180; // gaussian: where it is cut, radians
+    double k = 6;                        // sinc, per radian
+    double floor = 0;                    // sinc, relative to the peak
     int intervals = 128; // sinc, and piecewise_linear sampled from a source: points - 1
     std::vector<double> theta, value; // piecewise_linear control points (theta in radians)
     // blend: {along x, along y}; mixture: the components; piecewise_linear: {source} or none.

@@ -19,9 +19,13 @@ RadialTable::RadialTable(std::function<double(double)> f, int k, double scale,
     w_.erase(std::unique(w_.begin(), w_.end()), w_.end());
     w_.push_back(1.0); // r = infinity: the last interval holds the tail
     cdf_.assign(w_.size(), 0.0);
-    pdf_.assign(w_.size(), 0.0);
+    pdf_start_.assign(w_.size(), 0.0);
+    pdf_end_.assign(w_.size(), 0.0);
     for (size_t j = 0; j + 1 < w_.size(); ++j) {
-        pdf_[j] = density_w(w_[j]);
+        // One-sided limits: at a kink the density may jump (a distribution cut at a slope).
+        const double inside = 1e-9 * (w_[j + 1] - w_[j]);
+        pdf_start_[j] = density_w(w_[j] + inside);
+        pdf_end_[j] = density_w(w_[j + 1] - inside);
         cdf_[j + 1] = cdf_[j] + integrate_global([this](double w) { return density_w(w); }, w_[j],
                                                  w_[j + 1], 1e-300, 1e-12, 400);
     }
@@ -58,7 +62,7 @@ double RadialTable::sample(double u) const {
     }
     // Cubic Hermite CDF on the interval, in t in [0, 1]: solve H(t) = target by safeguarded
     // Newton, starting from the linear guess.
-    const double h = w1 - w0, d0 = pdf_[j] * h, d1 = pdf_[j + 1] * h;
+    const double h = w1 - w0, d0 = pdf_start_[j] * h, d1 = pdf_end_[j] * h;
     auto H = [&](double t, double& dH) {
         const double t2 = t * t, t3 = t2 * t;
         dH = (6 * t - 6 * t2) * c0 + (3 * t2 - 4 * t + 1) * d0 + (6 * t2 - 6 * t) * c1 +

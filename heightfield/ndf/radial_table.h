@@ -29,7 +29,8 @@ class RadialTable {
     std::function<double(double)> f_;
     int k_;
     double scale_;
-    std::vector<double> w_, cdf_, pdf_; // nodes in w, CDF and density (in w) at the nodes
+    std::vector<double> w_, cdf_;             // nodes in w and the CDF at them
+    std::vector<double> pdf_start_, pdf_end_; // density (in w) inside interval j at its two ends
     double total_ = 0;
 };
 
