@@ -123,7 +123,7 @@ Vec3 AnisotropicBlend::sample_m(double u1, double u2) const {
     // Given phi, theta's density is the mixture of the components' (R19 Eq. 15), weighted by
     // their terms of Eq. 10.
     const double c = std::cos(phi), wx = c * c * y_.d0, wy = (1 - c * c) * x_.d0;
-    const double px = wx / (wx + wy);
+    const double px = wx + wy > 0 ? wx / (wx + wy) : 0.5; // 0 / 0 only on a zero-density azimuth
     const bool use_x = u2 < px;
     const double u = use_x ? u2 / px : (u2 - px) / (1 - px);
     const Vec3 m = (use_x ? x_ : y_).ndf->sample_m(std::min(u, std::nextafter(1.0, 0.0)), 0.0);

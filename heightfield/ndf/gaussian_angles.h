@@ -9,8 +9,8 @@
 // Lambda = infinity (M18 pairs it with Torrance-Sparrow's G, not Smith's). Cut at theta_max
 // (default 89.9 deg) it is a proper distribution with a finite, exact Lambda; the cut's share of
 // the mass is C exp(-theta_max^2 / 2 sigma^2) (pi/2 - theta_max) at most, and Lambda(v) grows like
-// 2 C exp(-(pi/2)^2 / 2 sigma^2) tan theta_v ln(1 / (pi/2 - theta_max)) as the cut nears the horizon:
-// negligible for sigma < 0.3, a modelling choice the user sees for rougher Gaussians.
+// 2 C exp(-(pi/2)^2 / 2 sigma^2) tan theta_v ln(1 / (pi/2 - theta_max)) as the cut nears the
+// horizon: negligible for sigma < 0.3, a modelling choice the user sees for rougher Gaussians.
 #include "heightfield/ndf/radial_ndf.h"
 
 namespace gonio {
