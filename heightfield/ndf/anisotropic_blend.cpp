@@ -126,6 +126,7 @@ Vec3 AnisotropicBlend::sample_m(double u1, double u2) const {
     const double px = wx + wy > 0 ? wx / (wx + wy) : 0.5; // 0 / 0 only on a zero-density azimuth
     const bool use_x = u2 < px;
     const double u = use_x ? u2 / px : (u2 - px) / (1 - px);
+    // Isotropic distributions of gonio draw theta from their first uniform, phi from the second.
     const Vec3 m = (use_x ? x_ : y_).ndf->sample_m(std::min(u, std::nextafter(1.0, 0.0)), 0.0);
     return polar(std::acos(std::clamp(m.z, -1.0, 1.0)), phi);
 }
