@@ -366,3 +366,25 @@ TEST_CASE("tabulated NDFs in a config: the file is found next to the config and 
     }
     std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("interfaced Lambertian materials: eta and albedo per channel, and their ranges") {
+    const std::string head = "[ndf]\ntype = \"beckmann\"\nalpha = 0.5\n[beam]\ntheta_i = 30\n";
+    const Config one = parse_config(
+        head + "[material]\ntype = \"interfaced_lambertian\"\neta = 1.5\nalbedo = 0.6\n", "t.toml");
+    CHECK(one.cases[0].channels() == 1);
+    CHECK(one.cases[0].diffuse());
+    const Config three = parse_config(head + "[material]\ntype = \"interfaced_lambertian\"\neta = "
+                                             "1.5\nalbedo = [0.6, 0.3, 0.1]\n",
+                                      "t.toml");
+    CHECK(three.cases[0].channels() == 3);
+    CHECK(three.cases[0].wavelengths_nm.size() == 3);
+    CHECK(contains(error_of(head + "[material]\ntype = \"interfaced_lambertian\"\neta = 0.9\n"
+                                   "albedo = 0.5\n")
+                       .what(),
+                   "key 'material.eta': value 0.9 is out of range; allowed [1, 100]"));
+    CHECK(
+        contains(error_of(head + "[material]\ntype = \"interfaced_lambertian\"\neta = [1.5, 1.4]\n"
+                                 "albedo = 0.5\n")
+                     .what(),
+                 "give one (achromatic) or one per wavelength (3)"));
+}

@@ -1,4 +1,5 @@
 #include "gonio/material/fresnel.h"
+#include "gonio/material/interfaced_lambertian.h"
 #include "gonio/trace/gonioreflectometer.h"
 #include "heightfield/generate.h"
 #include "heightfield/ndf/beckmann.h"
@@ -153,5 +154,34 @@ TEST_CASE("Lambertian facets reflect at most their albedo, and the ledger closes
         }
         // Single scattering of a Lambertian facet: order 1 carries albedo x (its visible share).
         CHECK(g.ledger.reflected[0] / g.ledger.reflected[1] == doctest::Approx(2.0).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("interfaced Lambertian facets [M18]: K_d = 1 loses nothing, and n = 1 is Lambertian") {
+    const Scene scene(beckmann_surface(0.5));
+    const BeckersSensor sensor(145);
+    const InterfacedLambertianFacet white({1.5}, {1.0}), plain({1.0}, {0.6}), grey({1.5}, {0.6});
+    const LambertianFacet lambert({0.6});
+    for (double theta : {0.0, 60.0, 89.0}) {
+        const Vec3 wi = spherical_direction(radians(theta), 0.0);
+        TraceSettings st;
+        st.rays = 1 << 16;
+        CAPTURE(theta);
+        const TraceResult w = trace_incidence(scene, white, sensor, wi, st);
+        double total = 0;
+        for (int o = 0; o < w.orders; ++o) total += w.ledger.reflected[o];
+        // Interface plus substrate of reflectance 1 conserve energy ray by ray.
+        CHECK(total + w.ledger.capped[0] == doctest::Approx(1.0).epsilon(1e-12));
+        CHECK(w.ledger.absorbed[0] == doctest::Approx(0.0));
+        // n = 1: no interface; the same streams give the Lambertian facet's numbers.
+        const TraceResult p = trace_incidence(scene, plain, sensor, wi, st);
+        const TraceResult l = trace_incidence(scene, lambert, sensor, wi, st);
+        for (int o = 0; o < p.orders; ++o)
+            CHECK(p.ledger.reflected[o] == doctest::Approx(l.ledger.reflected[o]).epsilon(1e-12));
+        // With n = 1.5 the interface reflects some light specularly and keeps some inside:
+        // the ledger still closes.
+        const TraceResult g = trace_incidence(scene, grey, sensor, wi, st);
+        CHECK(std::abs(g.ledger.unaccounted[0]) < 1e-9);
+        CHECK(g.ledger.lost[0] == 0.0);
     }
 }

@@ -22,10 +22,10 @@ std::string default_output(const std::string& config) {
 int run_model_command(const ModelOptions& options) {
     const Config cfg = load_config(options.config, options.overrides); // throws ConfigError
     for (size_t k = 0; k < cfg.cases.size(); ++k)
-        if (cfg.cases[k].material_type == "lambertian")
+        if (cfg.cases[k].diffuse())
             throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].material.type",
-                              "Model L1 is the specular microfacet BRDF; \"lambertian\" facets "
-                              "have no model here yet");
+                              "Model L1 is the specular microfacet BRDF; \"" +
+                                  cfg.cases[k].material_type + "\" facets have no model here yet");
     const std::string output =
         options.output.empty() ? default_output(options.config) : options.output;
     const auto limit = limit_threads(options.threads);

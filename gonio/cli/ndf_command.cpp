@@ -65,7 +65,7 @@ int run_ndf_command(const NdfOptions& options) {
             std::printf("  %8.1f %12.6g %12.6g %12.6g %12.6g\n", t, at(*ndf, t, 0, false),
                         at(*ndf, t, 0.5 * kPi, false), at(*ndf, t, 0, true),
                         at(*ndf, t, 0.5 * kPi, true));
-        if (c.material_type != "lambertian") {
+        if (!c.diffuse()) {
             const BeckersSensor sensor(c.sensor_cells);
             const MicrofacetModel model(*ndf, c.fresnel, c.masking);
             for (double theta : c.theta_i_deg)

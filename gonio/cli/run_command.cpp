@@ -4,6 +4,7 @@
 #include "gonio/config/config.h"
 #include "gonio/config/config_error.h"
 #include "gonio/io/result_writer.h"
+#include "gonio/material/interfaced_lambertian.h"
 #include "gonio/material/material.h"
 #include "gonio/model/cell_integrator.h"
 #include "gonio/trace/gonioreflectometer.h"
@@ -23,6 +24,8 @@ std::vector<std::unique_ptr<Material>> facet_materials(const CaseConfig& c) {
     std::vector<std::unique_ptr<Material>> parts;
     if (c.material_type == "lambertian")
         parts.push_back(std::make_unique<LambertianFacet>(c.albedo));
+    else if (c.material_type == "interfaced_lambertian")
+        parts.push_back(std::make_unique<InterfacedLambertianFacet>(c.interface_eta, c.albedo));
     else if (c.material_type == "dielectric")
         for (int k = 0; k < c.fresnel.channels(); ++k)
             parts.push_back(std::make_unique<DielectricFacet>(c.fresnel.dielectric_eta(k)));
@@ -36,10 +39,10 @@ int run_run_command(const RunOptions& o) {
     const Config cfg = load_config(o.config, o.overrides); // throws ConfigError
     for (size_t k = 0; k < cfg.cases.size(); ++k) {
         const std::string& type = cfg.cases[k].material_type;
-        if (type == "lambertian" && cfg.cases[k].evaluate_model)
+        if (cfg.cases[k].diffuse() && cfg.cases[k].evaluate_model)
             throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].model.evaluate",
-                              "Model L1 is the specular microfacet BRDF; for lambertian facets set "
-                              "model.evaluate = false");
+                              "Model L1 is the specular microfacet BRDF; for " + type +
+                                  " facets set model.evaluate = false");
     }
     const auto limit = limit_threads(o.threads);
     const int threads = worker_threads(o.threads);

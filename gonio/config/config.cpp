@@ -372,7 +372,9 @@ class Loader {
 
     void load_material(CaseConfig& c, TableReader r, TableReader spectrum) {
         c.material_type = r.string(
-            "type", {"mirror", "dielectric", "conductor", "schlick", "lambertian"}, "mirror");
+            "type",
+            {"mirror", "dielectric", "conductor", "schlick", "lambertian", "interfaced_lambertian"},
+            "mirror");
         // Wavelengths matter only to a spectral material; read them lazily so that an unused
         // [spectrum] is reported.
         auto wavelengths = [&]() {
@@ -389,6 +391,18 @@ class Loader {
                     r.fail("albedo", "has " + std::to_string(c.albedo.size()) +
                                          " values; give one (achromatic) or one per wavelength (" +
                                          std::to_string(c.wavelengths_nm.size()) + ")");
+            }
+        } else if (c.material_type == "interfaced_lambertian") { // M18 section 3.1
+            c.albedo = r.number_list("albedo", {0, 1});
+            c.interface_eta = r.number_list("eta", {1, 100});
+            if (c.albedo.size() > 1 || c.interface_eta.size() > 1) { // spectral
+                c.wavelengths_nm = wavelengths();
+                for (const auto& [key, v] :
+                     {std::pair{"albedo", &c.albedo}, std::pair{"eta", &c.interface_eta}})
+                    if (v->size() != 1 && v->size() != c.wavelengths_nm.size())
+                        r.fail(key, "has " + std::to_string(v->size()) +
+                                        " values; give one (achromatic) or one per wavelength (" +
+                                        std::to_string(c.wavelengths_nm.size()) + ")");
             }
         } else if (c.material_type == "dielectric" || c.material_type == "schlick") {
             const bool dielectric = c.material_type == "dielectric";
@@ -468,8 +482,15 @@ class Loader {
 } // namespace
 
 std::string CaseConfig::material_description() const {
-    if (material_type != "lambertian") return fresnel.describe();
-    std::string s = "lambertian(albedo=";
+    if (!diffuse()) return fresnel.describe();
+    std::string s = material_type + "(";
+    if (material_type == "interfaced_lambertian") {
+        s += "eta=";
+        for (size_t k = 0; k < interface_eta.size(); ++k)
+            s += (k ? ", " : "") + std::to_string(interface_eta[k]);
+        s += "; ";
+    }
+    s += "albedo=";
     for (size_t k = 0; k < albedo.size(); ++k) s += (k ? ", " : "") + std::to_string(albedo[k]);
     return s + ")";
 }

@@ -7,6 +7,7 @@
 #include "heightfield/ndf/make_ndf.h"
 #include "heightfield/surface_spec.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -19,8 +20,14 @@ struct CaseConfig {
     std::string material_type;   // "mirror" | "dielectric" | "conductor" | "schlick"
     std::string material_source; // where the optical constants came from (table path), or ""
     FresnelTerm fresnel;         // specular facets
-    std::vector<double> albedo;  // lambertian facets: one value, or one per wavelength
+    std::vector<double> albedo;  // lambertian and interfaced_lambertian facets: K_d per channel
+    std::vector<double> interface_eta; // interfaced_lambertian: n_i per channel (or one)
+    bool diffuse() const {
+        return material_type == "lambertian" || material_type == "interfaced_lambertian";
+    }
     int channels() const {
+        if (material_type == "interfaced_lambertian")
+            return int(std::max(albedo.size(), interface_eta.size()));
         return material_type == "lambertian" ? int(albedo.size()) : fresnel.channels();
     }
     std::string material_description() const;

@@ -2,9 +2,9 @@
 // What one microfacet does to a ray, per spectral channel. Directions point away from the facet:
 // `wi` towards where the ray came from, the returned direction where it goes next.
 // Implemented here: specular reflectors (perfect mirror, conductor, Schlick), dielectric
-// facets with transmission, Lambertian facets. Interfaced Lambertian facets plug in behind the same
-// interface. The facet normal m always faces the upper side (+z); a ray may meet it from below
-// only inside a transmissive material (wi.m < 0).
+// facets with transmission, Lambertian facets; interfaced Lambertian facets in
+// interfaced_lambertian.h. The facet normal m always faces the upper side (+z); a ray may meet it
+// from below only inside a transmissive material (wi.m < 0).
 #include "core/math.h"
 #include "core/random.h"
 #include "gonio/material/fresnel_term.h"
