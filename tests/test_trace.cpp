@@ -1,8 +1,10 @@
+#include "core/chi_square.h"
 #include "gonio/material/fresnel.h"
 #include "gonio/material/interfaced_lambertian.h"
 #include "gonio/trace/gonioreflectometer.h"
 #include "heightfield/generate.h"
 #include "heightfield/ndf/beckmann.h"
+#include "sensor/cell_integral.h"
 
 #include <cmath>
 #include <doctest/doctest.h>
@@ -183,5 +185,36 @@ TEST_CASE("interfaced Lambertian facets [M18]: K_d = 1 loses nothing, and n = 1 
         const TraceResult g = trace_incidence(scene, grey, sensor, wi, st);
         CHECK(std::abs(g.ledger.unaccounted[0]) < 1e-9);
         CHECK(g.ledger.lost[0] == 0.0);
+    }
+}
+
+TEST_CASE("a flat interfaced Lambertian surface is M18 Eq. 9: Fresnel spike plus T(i) T(o) body") {
+    const HeightField flat(32, 1.0);
+    const Scene scene(flat);
+    const BeckersSensor sensor(577);
+    const InterfacedLambertianFacet il({1.5}, {1.0}); // every ray keeps weight 1: counts
+    const double re = il.external_diffuse_reflectance(0);
+    for (double theta : {0.0, 50.0, 80.0}) {
+        CAPTURE(theta);
+        const Vec3 wi = spherical_direction(radians(theta), radians(20.0));
+        const int specular = sensor.lookup({-wi.x, -wi.y, wi.z});
+        TraceSettings st;
+        st.rays = 1 << 18;
+        const TraceResult r = trace_incidence(scene, il, sensor, wi, st);
+        const double rays = double(st.rays), f = fresnel_dielectric(wi.z, 1.5);
+        // Body exits per cell: (1 - F(i)) int T(o) cos / (pi (1 - r_e)) [M18 Eq. 9, normalised].
+        const std::vector<double> body = integrate_over_cells(sensor, [&](const Vec3& o) {
+            return (1 - fresnel_dielectric(o.z, 1.5)) * o.z / (kPi * (1 - re));
+        });
+        std::vector<double> observed, expected;
+        for (int c = 0; c < sensor.cell_count(); ++c) {
+            observed.push_back(r.energy[size_t(c)] * rays); // order 1 only: a flat surface
+            expected.push_back(rays * ((1 - f) * body[c] + (c == specular ? f : 0.0)));
+        }
+        const ChiSquareResult chi = chi_square_test(observed, expected);
+        CAPTURE(chi.p_value);
+        CHECK(chi.failure.empty());
+        CHECK(chi.p_value > 0.01 / 3);
+        for (int o = 1; o < r.orders; ++o) CHECK(r.ledger.reflected[o] == 0.0);
     }
 }
