@@ -10,10 +10,10 @@
 // - Lambda from the projected area I(o) = int <o.m> D dw [R19 Eq. 13] = o.M + int max(0, -o.m) D dw
 //   with M = int m D dw: the second term (exactly 0 until o sees the table's support from behind,
 //   so Lambda has no round-off near the pole) is, for each theta_m, a circular convolution of
-//   D(theta_m, .) with max(0, -(a + b cos psi)), done
-//   on Fourier series (the piecewise-linear rows' spectra by FFTW, damped by sinc^2; the kernel's
-//   in closed form on the split domain of R19 Eq. 14), then Gauss-Legendre over theta_m. I is
-//   tabulated on a fine (theta_o, phi_o) grid and interpolated bicubically.
+//   D(theta_m, .) with max(0, -(a + b cos psi)), done on Fourier series (the piecewise-linear
+//   rows' spectra by FFTW, damped by sinc^2; the kernel's in closed form on the split domain of
+//   R19 Eq. 14), then Gauss-Legendre over theta_m. That term is tabulated on a fine
+//   (theta_o, phi_o) grid and interpolated bicubically.
 // - Visible normals: rejection from the envelope (cos theta_v cos theta_m + sin theta_v
 //   sin theta_m) D >= <v.m> D, a mixture of D cos and D sin.
 #include "heightfield/ndf/ndf.h"
