@@ -9,6 +9,7 @@
 #include "heightfield/ndf/generalized_t.h"
 #include "heightfield/ndf/ggx.h"
 #include "heightfield/ndf/mixture_ndf.h"
+#include "heightfield/ndf/ndf_table.h"
 #include "heightfield/ndf/piecewise_linear.h"
 #include "heightfield/ndf/sinc_ndf.h"
 #include "heightfield/ndf/student_t.h"
@@ -27,16 +28,6 @@ using namespace gonio;
 using gonio::test::hemisphere_integral;
 
 namespace {
-NdfTable table_of(const Ndf& ndf, int theta_intervals, int phi_count) {
-    NdfTable t{theta_intervals, phi_count, {}};
-    for (int j = 0; j <= theta_intervals; ++j)
-        for (int k = 0; k < phi_count; ++k)
-            t.values.push_back(ndf.D(
-                spherical_direction(std::min(0.5 * kPi * j / theta_intervals, 0.5 * kPi - 1e-9),
-                                    kTwoPi * k / phi_count)));
-    return t;
-}
-
 std::vector<std::unique_ptr<Ndf>> family() {
     std::vector<std::unique_ptr<Ndf>> out;
     out.push_back(std::make_unique<StudentT>(0.5, 0.5, 2.2)); // heavy tails, near the limit
@@ -64,7 +55,8 @@ std::vector<std::unique_ptr<Ndf>> family() {
     parts.push_back(std::make_unique<StudentT>(0.3, 0.6, 3.0));
     out.push_back(std::make_unique<MixtureNdf>(std::move(parts), std::vector<double>{1.0, 2.0}));
     // A measured-like table: anisotropic Student's t on a 3 x 15 degree grid.
-    out.push_back(std::make_unique<TabulatedNdf>(table_of(StudentT(0.3, 0.5, 4.0), 30, 24), "t"));
+    out.push_back(
+        std::make_unique<TabulatedNdf>(sample_ndf_table(StudentT(0.3, 0.5, 4.0), 30, 24), "t"));
     return out;
 }
 

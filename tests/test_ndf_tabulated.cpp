@@ -23,16 +23,6 @@ using namespace gonio;
 namespace fs = std::filesystem;
 
 namespace {
-NdfTable table_of(const Ndf& ndf, int theta_intervals, int phi_count) {
-    NdfTable t{theta_intervals, phi_count, {}};
-    for (int j = 0; j <= theta_intervals; ++j)
-        for (int k = 0; k < phi_count; ++k)
-            t.values.push_back(ndf.D(
-                spherical_direction(std::min(0.5 * kPi * j / theta_intervals, 0.5 * kPi - 1e-9),
-                                    kTwoPi * k / phi_count)));
-    return t;
-}
-
 fs::path scratch(const std::string& name) {
     const fs::path d = fs::temp_directory_path() / ("gonio_tab_" + std::to_string(::getpid()));
     fs::create_directories(d);
@@ -42,7 +32,7 @@ fs::path scratch(const std::string& name) {
 
 TEST_CASE("a fine table of anisotropic Beckmann has Beckmann's D and Lambda") {
     const Beckmann beckmann(0.3, 0.5);
-    const TabulatedNdf table(table_of(beckmann, 180, 144), "beckmann");
+    const TabulatedNdf table(sample_ndf_table(beckmann, 180, 144), "beckmann");
     for (double t : {0.0, 0.2, 0.5, 0.9})
         for (double p : {0.0, 0.8, 1.6, 3.0}) {
             const Vec3 d = spherical_direction(t, p);
@@ -73,7 +63,7 @@ TEST_CASE("a one-column table is the isotropic piecewise-linear NDF of its rows"
 }
 
 TEST_CASE("NDF tables are read from text and HDF5, and bad ones are refused by name") {
-    const NdfTable t = table_of(Beckmann(0.3, 0.5), 18, 8);
+    const NdfTable t = sample_ndf_table(Beckmann(0.3, 0.5), 18, 8);
     const fs::path text = scratch("t.txt"), h5 = scratch("t.h5");
     {
         std::ofstream f(text);

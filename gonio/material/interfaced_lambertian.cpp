@@ -10,17 +10,6 @@
 namespace gonio {
 
 namespace {
-// An orthonormal frame about m (Duff et al. 2017) and a cosine-distributed direction in it.
-Vec3 cosine_about(const Vec3& m, Rng& rng) {
-    const double sign = std::copysign(1.0, m.z);
-    const double a = -1.0 / (sign + m.z), b = m.x * m.y * a;
-    const Vec3 t{1.0 + sign * m.x * m.x * a, sign * b, -sign * m.x};
-    const Vec3 u{b, sign + m.y * m.y * a, -m.y};
-    const double r = std::sqrt(rng.uniform()), phi = kTwoPi * rng.uniform();
-    const double z = std::sqrt(std::max(0.0, 1 - r * r));
-    return normalize(r * std::cos(phi) * t + r * std::sin(phi) * u + z * m);
-}
-
 std::vector<double> per_channel(std::vector<double> v, size_t n) {
     if (v.size() == 1) v.assign(n, v[0]);
     return v;
@@ -93,7 +82,7 @@ bool InterfacedLambertianFacet::scatter(const Vec3& wi, const Vec3& m, Rng& rng,
     // The body: leave with density T_0(o) cos / (pi (1 - r_e,0)) (cosine, accepted with T_0).
     double t0 = 1;
     do {
-        wo = cosine_about(m, rng);
+        wo = cosine_direction(m, rng);
         t0 = 1 - fresnel_dielectric(std::max(0.0, dot(wo, m)), eta_[0]);
     } while (t0 < 1 && rng.uniform() >= t0);
     const double co = std::max(0.0, dot(wo, m));

@@ -22,10 +22,9 @@ bool SpecularReflector::scatter(const Vec3& wi, const Vec3& m, Rng&, Vec3& wo,
     return true;
 }
 
-bool LambertianFacet::scatter(const Vec3&, const Vec3& m, Rng& rng, Vec3& wo,
-                              double* weight) const {
-    // Cosine-weighted direction about m (Malley's method) in an orthonormal frame of m
-    // (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").
+Vec3 cosine_direction(const Vec3& m, Rng& rng) {
+    // Malley's method in an orthonormal frame of m (Duff et al. 2017, "Building an Orthonormal
+    // Basis, Revisited").
     const double sign = std::copysign(1.0, m.z);
     const double a = -1.0 / (sign + m.z), b = m.x * m.y * a;
     const Vec3 t{1.0 + sign * m.x * m.x * a, sign * b, -sign * m.x};
@@ -33,7 +32,12 @@ bool LambertianFacet::scatter(const Vec3&, const Vec3& m, Rng& rng, Vec3& wo,
     const double r = std::sqrt(rng.uniform()), phi = kTwoPi * rng.uniform();
     const double x = r * std::cos(phi), y = r * std::sin(phi),
                  z = std::sqrt(std::max(0.0, 1 - r * r));
-    wo = normalize(x * t + y * u + z * m);
+    return normalize(x * t + y * u + z * m);
+}
+
+bool LambertianFacet::scatter(const Vec3&, const Vec3& m, Rng& rng, Vec3& wo,
+                              double* weight) const {
+    wo = cosine_direction(m, rng);
     for (int k = 0; k < channels(); ++k) weight[k] *= albedo_[k];
     return true;
 }

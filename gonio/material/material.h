@@ -66,6 +66,10 @@ class DielectricFacet final : public Material {
     double eta_;
 };
 
+// A cosine-distributed direction about the unit normal m (Malley's method), from two uniforms of
+// rng: the Lambertian facet's exit, shared by every diffuse material.
+Vec3 cosine_direction(const Vec3& m, Rng& rng);
+
 // Refraction of wi (pointing away from the interface, on the side of n) through an interface of
 // relative index eta = n_transmitted / n_incident. Returns false on total internal reflection.
 bool refract(const Vec3& wi, const Vec3& n, double eta, Vec3& wt);

@@ -92,6 +92,16 @@ NdfTable read_ndf_table(const std::string& path) {
     return t;
 }
 
+NdfTable sample_ndf_table(const Ndf& ndf, int theta_intervals, int phi_count) {
+    NdfTable t{theta_intervals, phi_count, {}};
+    for (int j = 0; j <= theta_intervals; ++j)
+        for (int k = 0; k < phi_count; ++k)
+            t.values.push_back(ndf.D(
+                spherical_direction(std::min(0.5 * kPi * j / theta_intervals, 0.5 * kPi - 1e-9),
+                                    kTwoPi * k / phi_count)));
+    return t;
+}
+
 NdfTable facet_ndf_table(const HeightField& s, int theta_intervals, int phi_count) {
     // Equal projected areas: every triangle weighs the same in D cos.
     std::vector<Vec3> normals;

@@ -5,6 +5,7 @@
 // Grid: theta_j = j (pi/2) / theta_intervals, j = 0 .. theta_intervals (both ends included);
 // phi_k = k 2 pi / phi_count, k = 0 .. phi_count - 1 (periodic). One column is an isotropic table.
 #include "heightfield/heightfield.h"
+#include "heightfield/ndf/ndf.h"
 
 #include <string>
 #include <vector>
@@ -22,6 +23,9 @@ struct NdfTable {
 // from 0 to 90 degrees, one column per phi from 0 (360 excluded). HDF5 (.h5, .hdf5): a 2-D double
 // dataset "D" of the same layout. Throws std::runtime_error naming the file and the problem.
 NdfTable read_ndf_table(const std::string& path);
+
+// A distribution's D sampled on the grid (the horizon row just above it): a table of any NDF.
+NdfTable sample_ndf_table(const Ndf& ndf, int theta_intervals, int phi_count);
 
 // The facet distribution of a height map's triangles, each weighted by its projected area (the
 // density D(m) cos theta_m), by cloud-in-cell deposit on the grid's nodes divided by each node's
