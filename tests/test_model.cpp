@@ -1,5 +1,6 @@
 #include "core/random.h"
 #include "gonio/model/cell_integrator.h"
+#include "gonio/model/microfacet_model.h"
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/ggx.h"
 #include "ndf_quadrature.h"

@@ -5,6 +5,7 @@
 //   [R19 Eq. 9]: the tolerance is the Monte Carlo error plus the model's change over the
 //   uncertainty of the surface's effective roughness; beyond it lies Smith's own error.
 #include "gonio/model/cell_integrator.h"
+#include "gonio/model/microfacet_model.h"
 #include "gonio/trace/gonioreflectometer.h"
 #include "heightfield/generate.h"
 #include "heightfield/ndf/beckmann.h"

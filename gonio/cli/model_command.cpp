@@ -5,6 +5,7 @@
 #include "gonio/config/config_error.h"
 #include "gonio/io/result_writer.h"
 #include "gonio/model/cell_integrator.h"
+#include "gonio/model/microfacet_model.h"
 
 #include <chrono>
 #include <cstdio>

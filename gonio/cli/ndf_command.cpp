@@ -8,6 +8,7 @@
 #include "gonio/config/config.h"
 #include "gonio/config/config_error.h"
 #include "gonio/model/cell_integrator.h"
+#include "gonio/model/microfacet_model.h"
 
 #include <cstdio>
 #include <filesystem>

@@ -7,6 +7,7 @@
 #include "gonio/material/interfaced_lambertian.h"
 #include "gonio/material/material.h"
 #include "gonio/model/cell_integrator.h"
+#include "gonio/model/microfacet_model.h"
 #include "gonio/trace/gonioreflectometer.h"
 #include "heightfield/surface_source.h"
 

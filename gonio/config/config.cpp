@@ -183,10 +183,11 @@ class Loader {
         TableReader sensor = reader(t, path, "sensor");
         c.sensor_cells = static_cast<int>(sensor.integer("cells", kCells, 3240));
         TableReader model = reader(t, path, "model");
-        const std::string masking =
-            model.string("masking", {"height-correlated", "uncorrelated"}, "height-correlated");
-        c.masking =
-            masking == "uncorrelated" ? MaskingForm::uncorrelated : MaskingForm::height_correlated;
+        const std::string masking = model.string(
+            "masking", {"height-correlated", "uncorrelated", "v-cavity"}, "height-correlated");
+        c.masking = masking == "uncorrelated" ? MaskingForm::uncorrelated
+                    : masking == "v-cavity"   ? MaskingForm::v_cavity
+                                              : MaskingForm::height_correlated;
         c.quadrature.points = static_cast<int>(model.integer("quadrature", {1, 64}, 4));
         c.quadrature.rel_tol = model.number("tolerance", {1e-12, 0.1}, 1e-6);
         c.evaluate_model = model.boolean("evaluate", true);
@@ -496,7 +497,9 @@ std::string CaseConfig::material_description() const {
 }
 
 const char* masking_name(MaskingForm form) {
-    return form == MaskingForm::uncorrelated ? "uncorrelated" : "height-correlated";
+    return form == MaskingForm::uncorrelated ? "uncorrelated"
+           : form == MaskingForm::v_cavity   ? "v-cavity"
+                                             : "height-correlated";
 }
 
 Config parse_config(const std::string& text, const std::string& path,

@@ -4,6 +4,7 @@
 // any work starts; the README's "Configuration" section is the manual of every key.
 #include "gonio/material/fresnel_term.h"
 #include "gonio/model/cell_integrator.h"
+#include "gonio/model/microfacet_model.h"
 #include "heightfield/ndf/make_ndf.h"
 #include "heightfield/surface_spec.h"
 

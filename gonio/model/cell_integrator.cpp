@@ -16,9 +16,9 @@ struct Rect {
 
 class CellIntegrator {
   public:
-    CellIntegrator(const MicrofacetModel& model, const Vec3& wi, const CellQuadrature& q)
+    CellIntegrator(const BrdfModel& model, const Vec3& wi, const CellQuadrature& q)
         : model_(model), wi_(wi), q_(q), rule_(gauss_legendre(q.points)), nc_(model.channels()) {
-        const double narrow = model.ndf().narrowest_feature(), wide = model.ndf().widest_feature();
+        const double narrow = model.narrowest_feature(), wide = model.widest_feature();
         theta_r_ = spherical_theta(wi);
         phi_r_ = spherical_phi({-wi.x, -wi.y, wi.z});
         // The reflected lobe around the mirror direction: tilting h by d in the plane of incidence
@@ -127,7 +127,7 @@ class CellIntegrator {
         for (int k = 0; k < 2; ++k) refine(kids[k], &part[k * nc_], depth + 1, out);
     }
 
-    const MicrofacetModel& model_;
+    const BrdfModel& model_;
     Vec3 wi_;
     CellQuadrature q_;
     const GaussLegendre& rule_;
@@ -139,7 +139,7 @@ class CellIntegrator {
 
 } // namespace
 
-std::vector<double> model_cell_energy(const MicrofacetModel& model, const Vec3& wi,
+std::vector<double> model_cell_energy(const BrdfModel& model, const Vec3& wi,
                                       const BeckersSensor& sensor, const CellQuadrature& q) {
     const int nc = model.channels();
     std::vector<double> energy(static_cast<size_t>(sensor.cell_count()) * nc, 0.0);

@@ -9,7 +9,7 @@
 // result by more than the tolerance, and always split while it is wider than the distribution's
 // narrowest feature and near the specular direction, so that no rule can step over a lobe narrower
 // than a cell.
-#include "gonio/model/microfacet_model.h"
+#include "gonio/model/brdf_model.h"
 #include "sensor/beckers_sensor.h"
 
 #include <vector>
@@ -23,7 +23,7 @@ struct CellQuadrature {
 };
 
 // E[c * channels + k]: energy fraction into cell c for channel k, incidence wi (unit, wi.z > 0).
-std::vector<double> model_cell_energy(const MicrofacetModel& model, const Vec3& wi,
+std::vector<double> model_cell_energy(const BrdfModel& model, const Vec3& wi,
                                       const BeckersSensor& sensor, const CellQuadrature& q);
 
 // Directional albedo per channel: the sum of the cells' energies.

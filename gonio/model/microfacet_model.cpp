@@ -17,10 +17,4 @@ void MicrofacetModel::eval_cosine(const Vec3& i, const Vec3& o, double* out) con
     for (int c = 0; c < nc; ++c) out[c] *= geometric;
 }
 
-void MicrofacetModel::eval(const Vec3& i, const Vec3& o, double* f) const {
-    eval_cosine(i, o, f);
-    const int nc = channels();
-    for (int c = 0; c < nc; ++c) f[c] = o.z > 0 ? f[c] / o.z : 0.0;
-}
-
 } // namespace gonio

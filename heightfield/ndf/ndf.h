@@ -14,6 +14,7 @@ namespace gonio {
 enum class MaskingForm {
     height_correlated, // G2 = 1 / (1 + Lambda(i) + Lambda(o))       [R19 Eq. 9]
     uncorrelated,      // G2 = G1(i) G1(o)                             [R19 Eq. 3]
+    v_cavity,          // Torrance-Sparrow: min(1, 2 n.m n.i / i.m, 2 n.m n.o / o.m) [M18 Eq. 15]
 };
 
 class Ndf {
@@ -46,7 +47,7 @@ class Ndf {
     double G1(const Vec3& v) const;
     // G1(v, m): masking of a facet m seen from v, 0 for back-facing facets [R19 Eq. 4].
     double G1(const Vec3& v, const Vec3& m) const;
-    // Masking-shadowing G2(i, o, m) in the chosen form [R19 Eq. 3 and Eq. 9].
+    // Masking-shadowing G2(i, o, m) in the chosen form [R19 Eq. 3 and Eq. 9, M18 Eq. 15].
     double G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form) const;
     // pdf of sample_m: D(m) m.z.
     double pdf_m(const Vec3& m) const;

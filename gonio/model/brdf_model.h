@@ -1,0 +1,28 @@
+#pragma once
+// An analytic BRDF that gonio can integrate over its sensor cells and hold against the simulated
+// surface: Model L1 (the specular microfacet BRDF), the interfaced Lambertian model, Ashikhmin's
+// generated BRDF, Chermain's P-BRDF. Directions are unit vectors with n = +z.
+#include "core/math.h"
+
+namespace gonio {
+
+class BrdfModel {
+  public:
+    virtual ~BrdfModel() = default;
+    virtual int channels() const = 0;
+    // f(i, o) cos(theta_o) per channel into out[0..channels): the integrand of the albedo, finite
+    // up to the horizon; 0 when i or o is at or below it.
+    virtual void eval_cosine(const Vec3& i, const Vec3& o, double* out) const = 0;
+    // Angular widths (radians) of the narrowest and widest features of the lobe around the mirror
+    // direction: the cell integrator refines down to the first within reach of the second.
+    virtual double narrowest_feature() const = 0;
+    virtual double widest_feature() const = 0;
+
+    // f(i, o) in sr^-1 per channel.
+    void eval(const Vec3& i, const Vec3& o, double* f) const {
+        eval_cosine(i, o, f);
+        for (int c = 0; c < channels(); ++c) f[c] = o.z > 0 ? f[c] / o.z : 0.0;
+    }
+};
+
+} // namespace gonio

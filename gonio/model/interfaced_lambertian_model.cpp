@@ -1,0 +1,76 @@
+#include "gonio/model/interfaced_lambertian_model.h"
+
+#include "core/quadrature.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace gonio {
+
+namespace {
+// One value per channel: a single value repeated.
+std::vector<double> per_channel(std::vector<double> v, size_t n) {
+    if (v.size() == 1) v.assign(n, v[0]);
+    return v;
+}
+} // namespace
+
+InterfacedLambertianModel::InterfacedLambertianModel(const Ndf& ndf, std::vector<double> eta,
+                                                     std::vector<double> albedo,
+                                                     MaskingForm masking, int body_points)
+    : ndf_(ndf), facet_(eta, albedo),
+      specular_(ndf, FresnelTerm::dielectric(per_channel(eta, std::max(eta.size(), albedo.size()))),
+                masking),
+      masking_(masking) {
+    const GaussLegendre& rule = gauss_legendre(body_points);
+    for (size_t a = 0; a < rule.nodes.size(); ++a)
+        for (size_t b = 0; b < rule.nodes.size(); ++b) {
+            const Vec3 m = ndf.sample_m(0.5 * (1 + rule.nodes[a]), 0.5 * (1 + rule.nodes[b]));
+            if (m.z <= 0) continue;
+            nodes_.push_back(m);
+            weights_.push_back(0.25 * rule.weights[a] * rule.weights[b] / m.z);
+        }
+}
+
+void InterfacedLambertianModel::specular_cosine(const Vec3& i, const Vec3& o, double* out) const {
+    specular_.eval_cosine(i, o, out); // M18 Eq. 4 with Eq. 8
+}
+
+void InterfacedLambertianModel::body_cosine(const Vec3& i, const Vec3& o, double* out) const {
+    const int nc = channels();
+    for (int c = 0; c < nc; ++c) out[c] = 0.0;
+    if (i.z <= 0 || o.z <= 0) return;
+    // Smith's G depends on m only through the facet's visibility: computed once.
+    double smith = 0;
+    if (masking_ != MaskingForm::v_cavity) {
+        const double li = ndf_.lambda(i), lo = ndf_.lambda(o);
+        if (std::isinf(li) || std::isinf(lo)) return;
+        smith = masking_ == MaskingForm::height_correlated ? 1.0 / (1.0 + li + lo) // R19 Eq. 9
+                                                           : 1.0 / ((1.0 + li) * (1.0 + lo));
+    }
+    for (size_t n = 0; n < nodes_.size(); ++n) {
+        const Vec3& m = nodes_[n];
+        const double im = dot(i, m), om = dot(o, m);
+        if (im <= 0 || om <= 0) continue;
+        const double g = masking_ == MaskingForm::v_cavity ? ndf_.G2(i, o, m, masking_) : smith;
+        // M18 Eq. 13 times o.n: f_b^mu G |i.m||o.m| / |i.n|, weighted by D dm.
+        const double w = weights_[n] * g * im * om / i.z;
+        for (int c = 0; c < nc; ++c) out[c] += w * facet_.body_brdf(i, o, m, c);
+    }
+}
+
+void InterfacedLambertianModel::eval_cosine(const Vec3& i, const Vec3& o, double* out) const {
+    const int nc = channels();
+    double body[16];
+    std::vector<double> heap;
+    double* b = body;
+    if (nc > 16) {
+        heap.resize(size_t(nc));
+        b = heap.data();
+    }
+    specular_cosine(i, o, out); // M18 Eq. 12: f = f_s + f_b
+    body_cosine(i, o, b);
+    for (int c = 0; c < nc; ++c) out[c] += b[c];
+}
+
+} // namespace gonio
