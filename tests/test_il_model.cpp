@@ -1,4 +1,5 @@
 // The analytic interfaced Lambertian model [M18 Eq. 12-13] and its limits.
+#include "core/hemisphere_integral.h"
 #include "gonio/config/config.h"
 #include "gonio/material/fresnel.h"
 #include "gonio/model/cell_integrator.h"
@@ -6,7 +7,6 @@
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/gaussian_angles.h"
 #include "heightfield/ndf/ggx.h"
-#include "ndf_quadrature.h"
 
 #include <doctest/doctest.h>
 
@@ -38,7 +38,7 @@ TEST_CASE("IL model at n = 1 is the Lambertian-microfacet BRDF: K_d / pi int D G
             // Brute force in (theta_m, phi_m), independent of the model's sampler-space rule.
             const double reference =
                 kd / kPi *
-                test::hemisphere_integral(
+                hemisphere_integral(
                     [&](const Vec3& m) {
                         const double im = dot(i, m), om = dot(o, m);
                         if (im <= 0 || om <= 0) return 0.0;

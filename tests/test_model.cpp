@@ -1,9 +1,9 @@
+#include "core/hemisphere_integral.h"
 #include "core/random.h"
 #include "gonio/model/cell_integrator.h"
 #include "gonio/model/microfacet_model.h"
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/ggx.h"
-#include "ndf_quadrature.h"
 
 #include <cmath>
 #include <doctest/doctest.h>
@@ -17,7 +17,7 @@ namespace {
 // itself: f cos(theta_o) dw_o = F D G2 (i.h) / (i.n) dw_h  (dw_o = 4 (i.h) dw_h).
 double albedo_over_half_vectors(const Ndf& ndf, const FresnelTerm& fresnel, MaskingForm form,
                                 const Vec3& i, int channel = 0) {
-    return test::hemisphere_integral(
+    return hemisphere_integral(
         [&](const Vec3& h) {
             const double ih = dot(i, h);
             if (ih <= 0) return 0.0;

@@ -1,6 +1,6 @@
+#include "core/hemisphere_integral.h"
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/ggx.h"
-#include "ndf_quadrature.h"
 
 #include <cmath>
 #include <doctest/doctest.h>
@@ -8,7 +8,7 @@
 #include <vector>
 
 using namespace gonio;
-using gonio::test::hemisphere_integral;
+using gonio::hemisphere_integral;
 
 namespace {
 std::vector<std::unique_ptr<Ndf>> all_ndfs(const std::vector<std::pair<double, double>>& alphas) {

@@ -2,6 +2,7 @@
 // generalised t): normalisation, Lambda against brute force [R19 Eq. 5], visible-normal
 // normalisation, chi-square tests of both samplers, the family's limits, and parameter checks.
 #include "chi_square_harness.h"
+#include "core/hemisphere_integral.h"
 #include "heightfield/ndf/anisotropic_blend.h"
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/gaussian_angles.h"
@@ -14,7 +15,6 @@
 #include "heightfield/ndf/sinc_ndf.h"
 #include "heightfield/ndf/student_t.h"
 #include "heightfield/ndf/tabulated_ndf.h"
-#include "ndf_quadrature.h"
 
 #include <algorithm>
 #include <cmath>
@@ -25,7 +25,7 @@
 #include <vector>
 
 using namespace gonio;
-using gonio::test::hemisphere_integral;
+using gonio::hemisphere_integral;
 
 namespace {
 std::vector<std::unique_ptr<Ndf>> family() {
@@ -299,8 +299,8 @@ TEST_CASE("Gaussian of angles: C numerically, and the small-sigma series") {
     }
     // Normalised, with a finite, increasing Lambda (the battery checks it against brute force).
     const GaussianAngles n(0.3);
-    CHECK(gonio::test::hemisphere_integral([&](const Vec3& m) { return n.D(m) * m.z; }, 0.3,
-                                           nullptr, 1e-10) == doctest::Approx(1.0).epsilon(1e-6));
+    CHECK(gonio::hemisphere_integral([&](const Vec3& m) { return n.D(m) * m.z; }, 0.3, nullptr,
+                                     1e-10) == doctest::Approx(1.0).epsilon(1e-6));
     double previous = -1;
     for (double t = 0; t < kPi / 2; t += 0.05) {
         const double l = n.lambda(spherical_direction(t, 0.0));

@@ -1,5 +1,6 @@
 #pragma once
-// Brute-force integrals over the hemisphere of normals for the NDF tests: adaptive Gauss-Kronrod
+// Integrals over the hemisphere of normals (the NDF tests' brute force, and the tables of
+// Ashikhmin's model): adaptive Gauss-Kronrod
 // in (theta_m, phi_m), with theta split at multiples of the roughness (so narrow lobes are
 // resolved) and at the horizon of a view direction (so the clamped dot product's kink is a
 // piece boundary, not inside a piece).
@@ -11,10 +12,11 @@
 #include <functional>
 #include <vector>
 
-namespace gonio::test {
+namespace gonio {
 
 // Integral over the upper hemisphere of g(m) dw_m, g smooth except at the breakpoints.
-// `scale` is the narrowest angular feature of g; `v`, if v.z < 1, adds the great circle v.m = 0.
+// `scale` is the narrowest angular feature of g; `v`, if given, restricts the domain to v.m > 0
+// (the great circle v.m = 0 becomes a piece boundary).
 // `kinks`: polar angles where g is not smooth (the control points of a piecewise-linear NDF);
 // `phi_kinks`: azimuths where it is not (the columns of a table).
 inline double hemisphere_integral(const std::function<double(const Vec3&)>& g, double scale,
@@ -61,4 +63,4 @@ inline double hemisphere_integral(const std::function<double(const Vec3&)>& g, d
     return total;
 }
 
-} // namespace gonio::test
+} // namespace gonio
