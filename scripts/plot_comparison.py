@@ -1,13 +1,14 @@
 #!/usr/bin/python3
-"""Model L1 against simulated L1 on the sensor, as in R19 Fig. 9 and 11.
+"""Each model against the simulation on the sensor, as in R19 Fig. 9 and 11.
 
 Usage: scripts/plot_comparison.py RESULT.h5 [OUT_DIR] [--channel K]
 
-For every case of a `gonio run` result and every incidence, one PNG with four polar maps of the
-upper hemisphere (radius theta_o in degrees, angle phi_o, one wedge per Beckers cell): simulated L1,
-Model L1 (the same colour scale, logarithmic), their ratio (1 is white; blue where the simulation is
-lower), and the simulated multiple scattering L2+. The title gives the albedos, their relative
-difference and the per-cell relative L1 distance. Needs Debian's python3-h5py and
+For every case of a `gonio run` result, every model of the case and every incidence, one PNG with
+four polar maps of the upper hemisphere (radius theta_o in degrees, angle phi_o, one wedge per
+Beckers cell): the simulated BRDF the model is held against (L1, or every order), the model (the
+same colour scale, logarithmic), their ratio (1 is white; blue where the simulation is lower), and
+the simulated multiple scattering L2+. The title gives the albedos, their relative difference and the
+per-cell relative L1 distance. Needs Debian's python3-h5py and
 python3-matplotlib (under /usr/bin/python3).
 """
 import os
@@ -40,6 +41,42 @@ def polar_map(ax, group, values, norm, cmap, title):
     plt.colorbar(mappable, ax=ax, shrink=0.7, pad=0.1)
 
 
+def draw(group, name, m, sim_name, sim_label, t, p, theta, phi, channel, out_dir):
+    """One figure: simulated BRDF, model, ratio and L2+ for one incidence; returns 1."""
+    sim = group[sim_name][t, p, :, channel]
+    model = group[f"model_{m}"][t, p, :, channel]
+    ratio = group[f"{m}_ratio"][t, p, :, channel]
+    l2plus = group["brdf_l2plus"][t, p, :, channel]
+    top = max(sim.max(), model.max())
+    log = colors.LogNorm(vmin=top * 1e-4, vmax=top)
+    fig, axes = plt.subplots(1, 4, figsize=(17, 4.6), subplot_kw={"projection": "polar"})
+    polar_map(axes[0], group, sim, log, "viridis", f"simulated {sim_label} (1/sr)")
+    polar_map(axes[1], group, model, log, "viridis", f"model {m} (1/sr)")
+    # The ratio only where the model expects >= 100 rays in the cell (a relative Monte Carlo error
+    # <= 10 %); grey elsewhere.
+    expected = group[f"model_{m}_energy"][t, p, :, channel] * group["rays"][t, p]
+    ratio = np.where(expected >= 100, ratio, np.nan)
+    polar_map(axes[2], group, ratio, colors.TwoSlopeNorm(1.0, 0.5, 1.5), "RdBu_r",
+              f"simulated / model {m} (cells with >= 100 rays expected)")
+    l2_top = max(l2plus.max(), 1e-12)
+    polar_map(axes[3], group, l2plus, colors.LogNorm(vmin=l2_top * 1e-3, vmax=l2_top), "magma",
+              "simulated L2+ (1/sr)")
+    a = lambda key: group[key][t, p, channel]  # noqa: E731
+    sim_albedo = a("linf_albedo") if sim_name == "brdf_linf" else a("l1_albedo")
+    fig.suptitle(
+        f"{name}  θi = {theta:.2f}° ({np.radians(theta):.3f} rad), φi = {phi:.1f}°"
+        f"  channel {channel}:  {sim_label} sim {sim_albedo:.4f}, model {m} "
+        f"{a(f'model_{m}_albedo'):.4f} ({a(f'{m}_relative_difference'):+.2%}), "
+        f"distance {a(f'{m}_distance'):.3f}, L2+ {a('l2plus_albedo'):.4f}",
+        fontsize=10)
+    suffix = "" if m == "l1" else f"_{m}"
+    out = os.path.join(out_dir, f"{name}_theta{theta:.2f}_phi{phi:.1f}{suffix}.png")
+    fig.savefig(out, dpi=80, bbox_inches="tight")
+    plt.close(fig)
+    print(out)
+    return 1
+
+
 def main():
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     channel = 0
@@ -54,48 +91,24 @@ def main():
     written = 0
     with h5py.File(path, "r") as f:
         for name, group in f.items():
-            if "brdf_l1" not in group or "model_l1" not in group:
-                continue  # a model-only case, or a run without the model
+            models = group.attrs.get("models", "")
+            models = models.decode() if isinstance(models, bytes) else str(models)
+            if "brdf_l1" not in group or not models:
+                continue  # a model-only case, or a run without models
             nc = group["channel"].shape[0]
             if channel >= nc:
                 sys.exit(f"{name}: channel {channel} out of range [0, {nc - 1}]")
             theta_i, phi_i = group["theta_i"][...], group["phi_i"][...]
-            for t, theta in enumerate(theta_i):
-                for p, phi in enumerate(phi_i):
-                    sim = group["brdf_l1"][t, p, :, channel]
-                    model = group["model_l1"][t, p, :, channel]
-                    ratio = group["l1_ratio"][t, p, :, channel]
-                    l2plus = group["brdf_l2plus"][t, p, :, channel]
-                    top = max(sim.max(), model.max())
-                    log = colors.LogNorm(vmin=top * 1e-4, vmax=top)
-                    fig, axes = plt.subplots(1, 4, figsize=(17, 4.6),
-                                             subplot_kw={"projection": "polar"})
-                    polar_map(axes[0], group, sim, log, "viridis", "simulated L1 (1/sr)")
-                    polar_map(axes[1], group, model, log, "viridis", "Model L1 (1/sr)")
-                    # The ratio only where the model expects >= 100 rays in the cell (a relative
-                    # Monte Carlo error <= 10 %); grey elsewhere.
-                    expected = group["model_l1_energy"][t, p, :, channel] * group["rays"][t, p]
-                    ratio = np.where(expected >= 100, ratio, np.nan)
-                    polar_map(axes[2], group, ratio, colors.TwoSlopeNorm(1.0, 0.5, 1.5), "RdBu_r",
-                              "simulated / model L1 (cells with >= 100 rays expected)")
-                    l2_top = max(l2plus.max(), 1e-12)
-                    polar_map(axes[3], group, l2plus,
-                              colors.LogNorm(vmin=l2_top * 1e-3, vmax=l2_top), "magma",
-                              "simulated L2+ (1/sr)")
-                    a = lambda key: group[key][t, p, channel]  # noqa: E731
-                    fig.suptitle(
-                        f"{name}  θi = {theta:.2f}° ({np.radians(theta):.3f} rad), φi = {phi:.1f}°"
-                        f"  channel {channel}:  L1 sim {a('l1_albedo'):.4f}, model "
-                        f"{a('model_l1_albedo'):.4f} ({a('l1_relative_difference'):+.2%}), "
-                        f"L1 distance {a('l1_distance'):.3f}, L2+ {a('l2plus_albedo'):.4f}",
-                        fontsize=10)
-                    out = os.path.join(out_dir, f"{name}_theta{theta:.2f}_phi{phi:.1f}.png")
-                    fig.savefig(out, dpi=80, bbox_inches="tight")
-                    plt.close(fig)
-                    print(out)
-                    written += 1
+            for m in models.split(","):
+                vs = group.attrs[f"model_{m}_compared_with"]
+                vs = vs.decode() if isinstance(vs, bytes) else str(vs)
+                sim_name, sim_label = ("brdf_linf", "every order") if vs == "linf" else ("brdf_l1", "L1")
+                for t, theta in enumerate(theta_i):
+                    for p, phi in enumerate(phi_i):
+                        written += draw(group, name, m, sim_name, sim_label, t, p, theta, phi,
+                                        channel, out_dir)
     if written == 0:
-        sys.exit(f"{path}: no case with both simulated and Model L1 (run `gonio run` with the model)")
+        sys.exit(f"{path}: no case with both a simulation and a model (run `gonio run` with a model)")
 
 
 if __name__ == "__main__":

@@ -286,7 +286,7 @@ TEST_CASE("gonio run traces, compares with the model, and writes the simulation"
                         "[trace]\nrays = 20000\norders = 3\n");
     const Run r = run_gonio(d, "run r.toml -o out.h5 --cache-dir cache");
     CHECK(r.code == 0);
-    CHECK(r.out.find("model_L1") != std::string::npos);
+    CHECK(r.out.find("rel_diff") != std::string::npos);
     const ResultSummary s = read_result_summary((d / "out.h5").string());
     REQUIRE(s.cases.size() == 1);
     for (const char* k : {"l1_albedo", "l2_albedo", "l2plus_albedo", "linf_albedo",
@@ -346,21 +346,45 @@ TEST_CASE("gonio run traces, compares with the model, and writes the simulation"
     fs::remove_all(d);
 }
 
-TEST_CASE("gonio run with Lambertian facets: the model must be switched off explicitly") {
+TEST_CASE("gonio run with diffuse facets: the IL model and the V-cavity beside the simulation") {
     const fs::path d = fresh_dir("lambert");
     write(d / "l.toml", "[ndf]\ntype = \"beckmann\"\nalpha = 0.5\n[beam]\ntheta_i = 30\n"
                         "[material]\ntype = \"lambertian\"\nalbedo = 0.8\n[sensor]\ncells = 145\n"
                         "[surface]\nsize = 64\niterations = 20\n[trace]\nrays = 10000\n");
-    const Run refused = run_gonio(d, "run l.toml -o out.h5 --cache-dir cache");
+    // Model L1 is the specular BRDF: asking for it with diffuse facets is refused up front.
+    const Run refused =
+        run_gonio(d, "run l.toml -o out.h5 --cache-dir cache --set model.models=\"l1\"");
     CHECK(refused.code == 2);
-    CHECK(refused.err.find("key 'case[0].model.evaluate'") != std::string::npos);
+    CHECK(refused.err.find("key 'model.models'") != std::string::npos);
     CHECK(!fs::exists(d / "out.h5"));
-    const Run r = run_gonio(d, "run l.toml -o out.h5 --cache-dir cache --set model.evaluate=false");
+    const Run r = run_gonio(
+        d, "run l.toml -o out.h5 --cache-dir cache --set 'model.models=[\"il\", \"vcavity\"]'");
     CHECK(r.code == 0);
     const ResultSummary s = read_result_summary((d / "out.h5").string());
     REQUIRE(s.cases.size() == 1);
-    CHECK(s.cases[0].albedos.count("model_l1_albedo") == 0);
-    CHECK(s.cases[0].albedos.at("linf_albedo")[0] <= 0.8 + 1e-12);
-    CHECK(s.cases[0].attributes.at("fresnel").find("lambertian(albedo=0.8") == 0);
+    const CaseSummary& c = s.cases[0];
+    CHECK(c.attributes.at("models") == "il,vcavity");
+    CHECK(c.attributes.at("model_il_compared_with") == "l1");
+    CHECK(c.attributes.at("model_vcavity_compared_with") == "linf");
+    for (const char* name :
+         {"model_il_albedo", "il_relative_difference", "il_distance", "model_vcavity_albedo",
+          "model_vcavity_l1_albedo", "model_vcavity_l2plus_albedo", "vcavity_relative_difference",
+          "vcavity_distance"})
+        CHECK(c.albedos.count(name) == 1);
+    // n = 1: Lambertian microfacets. Single scattering reflects less than every order; the
+    // V-cavity keeps at most the albedo.
+    const double il = c.albedos.at("model_il_albedo")[0],
+                 vc = c.albedos.at("model_vcavity_albedo")[0];
+    CHECK(il < vc);
+    CHECK(vc <= 0.8 + 1e-12);
+    CHECK(c.albedos.at("model_vcavity_l1_albedo")[0] +
+              c.albedos.at("model_vcavity_l2plus_albedo")[0] ==
+          doctest::Approx(vc).epsilon(1e-12));
+    CHECK(c.albedos.at("linf_albedo")[0] <= 0.8 + 1e-12);
+    CHECK(c.attributes.at("fresnel").find("lambertian(albedo=0.8") == 0);
+    const Run cmp = run_gonio(d, "compare out.h5");
+    CHECK(cmp.code == 0);
+    CHECK(cmp.out.find("vcavity") != std::string::npos);
+    CHECK(cmp.out.find("Linf") != std::string::npos);
     fs::remove_all(d);
 }

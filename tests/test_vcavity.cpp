@@ -78,8 +78,8 @@ TEST_CASE("V-cavity f1 is the microfacet BRDF with Torrance-Sparrow's G [M18 Eq.
     CHECK(tests == 18);
 }
 
-TEST_CASE(
-    "V-cavity: interfaced Lambertian facets with K_d = 1 close the ledger; threads do not matter") {
+TEST_CASE("V-cavity: interfaced Lambertian facets with K_d = 1 close the ledger, whatever the "
+          "thread count") {
     const BeckersSensor sensor(145);
     const Beckmann ndf(1.0, 1.0);
     const InterfacedLambertianFacet white({1.5}, {1.0});

@@ -2,39 +2,57 @@
 #include "gonio/io/result_reader.h"
 
 #include <cstdio>
+#include <sstream>
 
 namespace gonio {
 
 int run_compare_command(const std::string& path) {
     const ResultSummary s = read_result_summary(path);
-    std::printf("%-20s %7s %7s %3s %10s %10s %10s %10s %10s %10s %10s\n", "case", "theta_i",
-                "phi_i", "ch", "model_L1", "sim_L1", "rel_diff", "L1_dist", "sim_L2+", "sim_Linf",
-                "sim_T");
+    // One row per incidence, channel and model: the model's albedo against the simulated
+    // quantity it models (L1 or every order), their relative difference and the per-cell relative
+    // L1 distance; then the simulation's own albedos.
+    std::printf("%-20s %7s %7s %3s %-10s %4s %10s %10s %10s %10s %10s %10s %10s %10s\n", "case",
+                "theta_i", "phi_i", "ch", "model", "vs", "model", "sim", "rel_diff", "distance",
+                "sim_L1", "sim_L2+", "sim_Linf", "sim_T");
     for (const CaseSummary& c : s.cases) {
-        auto get = [&](const char* name, size_t i) {
+        auto get = [&](const std::string& name, size_t i) {
             auto it = c.albedos.find(name);
             return it == c.albedos.end() ? -1.0 : it->second[i];
         };
         if (c.albedos.count("l1_albedo") == 0) continue; // a model-only case
+        std::vector<std::string> models;
+        if (auto it = c.attributes.find("models"); it != c.attributes.end()) {
+            std::stringstream list(it->second);
+            for (std::string m; std::getline(list, m, ',');) models.push_back(m);
+        }
+        if (models.empty()) models.push_back("");
         const size_t np = c.phi_i_deg.size(), nc = c.channels;
         for (size_t t = 0; t < c.theta_i_deg.size(); ++t)
             for (size_t p = 0; p < np; ++p)
-                for (size_t k = 0; k < nc; ++k) {
-                    const size_t i = (t * np + p) * nc + k;
-                    std::printf("%-20s %7.2f %7.2f %3zu", c.name.c_str(), c.theta_i_deg[t],
-                                c.phi_i_deg[p], k);
-                    if (c.albedos.count("model_l1_albedo"))
-                        std::printf(" %10.6f %10.6f %+10.4f %10.4f", get("model_l1_albedo", i),
-                                    get("l1_albedo", i), get("l1_relative_difference", i),
-                                    get("l1_distance", i));
-                    else
-                        std::printf(" %10s %10.6f %10s %10s", "-", get("l1_albedo", i), "-", "-");
-                    std::printf(" %10.6f %10.6f", get("l2plus_albedo", i), get("linf_albedo", i));
-                    if (c.albedos.count("transmitted_albedo")) // dielectrics only
-                        std::printf(" %10.6f\n", get("transmitted_albedo", i));
-                    else
-                        std::printf(" %10s\n", "-");
-                }
+                for (size_t k = 0; k < nc; ++k)
+                    for (const std::string& m : models) {
+                        const size_t i = (t * np + p) * nc + k;
+                        std::printf("%-20s %7.2f %7.2f %3zu", c.name.c_str(), c.theta_i_deg[t],
+                                    c.phi_i_deg[p], k);
+                        if (m.empty()) {
+                            std::printf(" %-10s %4s %10s %10s %10s %10s", "-", "-", "-", "-", "-",
+                                        "-");
+                        } else {
+                            const auto vs = c.attributes.find("model_" + m + "_compared_with");
+                            const bool all = vs != c.attributes.end() && vs->second == "linf";
+                            std::printf(" %-10s %4s %10.6f %10.6f %+10.4f %10.4f", m.c_str(),
+                                        all ? "Linf" : "L1", get("model_" + m + "_albedo", i),
+                                        get(all ? "linf_albedo" : "l1_albedo", i),
+                                        get(m + "_relative_difference", i),
+                                        get(m + "_distance", i));
+                        }
+                        std::printf(" %10.6f %10.6f %10.6f", get("l1_albedo", i),
+                                    get("l2plus_albedo", i), get("linf_albedo", i));
+                        if (c.albedos.count("transmitted_albedo")) // dielectrics only
+                            std::printf(" %10.6f\n", get("transmitted_albedo", i));
+                        else
+                            std::printf(" %10s\n", "-");
+                    }
     }
     return 0;
 }

@@ -4,10 +4,8 @@
 #include "gonio/config/config.h"
 #include "gonio/config/config_error.h"
 #include "gonio/io/result_writer.h"
-#include "gonio/model/cell_integrator.h"
-#include "gonio/model/microfacet_model.h"
+#include "gonio/model/case_models.h"
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -23,10 +21,9 @@ std::string default_output(const std::string& config) {
 int run_model_command(const ModelOptions& options) {
     const Config cfg = load_config(options.config, options.overrides); // throws ConfigError
     for (size_t k = 0; k < cfg.cases.size(); ++k)
-        if (cfg.cases[k].diffuse())
-            throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].material.type",
-                              "Model L1 is the specular microfacet BRDF; \"" +
-                                  cfg.cases[k].material_type + "\" facets have no model here yet");
+        if (cfg.cases[k].models.empty())
+            throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].model.evaluate",
+                              "gonio model evaluates the models; this case has none");
     const std::string output =
         options.output.empty() ? default_output(options.config) : options.output;
     const auto limit = limit_threads(options.threads);
@@ -38,39 +35,38 @@ int run_model_command(const ModelOptions& options) {
     for (const auto& c : cfg.cases) total += c.theta_i_deg.size() * c.phi_i_deg.size();
     Progress progress(total, options.quiet);
     if (!options.quiet)
-        std::printf("%-24s %8s %8s  %s\n", "case", "theta_i", "phi_i", "model_l1_albedo");
+        std::printf("%-24s %8s %8s  %-10s %s\n", "case", "theta_i", "phi_i", "model", "albedo");
 
-    for (const CaseConfig& c : cfg.cases) {
+    for (size_t ci = 0; ci < cfg.cases.size(); ++ci) {
+        const CaseConfig& c = cfg.cases[ci];
         const BeckersSensor sensor(c.sensor_cells);
         const auto ndf = make_ndf(c.ndf);
-        const MicrofacetModel model(*ndf, c.fresnel, c.masking);
-        const int nc = model.channels();
-        ModelL1Result result;
-        for (double theta : c.theta_i_deg) {
-            for (double phi : c.phi_i_deg) {
+        CaseModels models(c, *ndf);
+        for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti) {
+            for (size_t pi = 0; pi < c.phi_i_deg.size(); ++pi) {
+                const double theta = c.theta_i_deg[ti], phi = c.phi_i_deg[pi];
                 char label[160];
                 std::snprintf(label, sizeof label, "%s theta_i=%g phi_i=%g", c.name.c_str(), theta,
                               phi);
                 progress.update(done, label);
-                const auto t0 = std::chrono::steady_clock::now();
                 const Vec3 wi = spherical_direction(radians(theta), radians(phi));
-                const std::vector<double> energy =
-                    model_cell_energy(model, wi, sensor, c.quadrature);
-                const std::vector<double> albedo = albedo_from_cells(energy, nc);
-                result.seconds.push_back(
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-                result.energy.insert(result.energy.end(), energy.begin(), energy.end());
-                result.albedo.insert(result.albedo.end(), albedo.begin(), albedo.end());
+                // The same streams as gonio run's, so V-cavity estimates agree between the two.
+                const std::uint64_t stream =
+                    (std::uint64_t(ci) << 40) ^ (std::uint64_t(ti) << 20) ^ std::uint64_t(pi);
+                const auto albedos = models.evaluate(wi, sensor, cfg.seed, stream);
                 ++done;
                 if (!options.quiet) {
                     progress.finish();
-                    std::printf("%-24s %8.3f %8.3f ", c.name.c_str(), theta, phi);
-                    for (double a : albedo) std::printf(" %.6f", a);
-                    std::printf("\n");
+                    for (size_t m = 0; m < albedos.size(); ++m) {
+                        std::printf("%-24s %8.3f %8.3f  %-10s", c.name.c_str(), theta, phi,
+                                    c.models[m].c_str());
+                        for (double a : albedos[m]) std::printf(" %.6f", a);
+                        std::printf("\n");
+                    }
                 }
             }
         }
-        writer.write_model_case(c, sensor, result);
+        writer.write_model_case(c, sensor, models.results());
     }
     progress.finish();
     writer.commit();

@@ -2,12 +2,10 @@
 #include "gonio/cli/commands.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
-#include "gonio/config/config_error.h"
 #include "gonio/io/result_writer.h"
 #include "gonio/material/interfaced_lambertian.h"
 #include "gonio/material/material.h"
-#include "gonio/model/cell_integrator.h"
-#include "gonio/model/microfacet_model.h"
+#include "gonio/model/case_models.h"
 #include "gonio/trace/gonioreflectometer.h"
 #include "heightfield/surface_source.h"
 
@@ -38,13 +36,6 @@ std::vector<std::unique_ptr<Material>> facet_materials(const CaseConfig& c) {
 
 int run_run_command(const RunOptions& o) {
     const Config cfg = load_config(o.config, o.overrides); // throws ConfigError
-    for (size_t k = 0; k < cfg.cases.size(); ++k) {
-        const std::string& type = cfg.cases[k].material_type;
-        if (cfg.cases[k].diffuse() && cfg.cases[k].evaluate_model)
-            throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].model.evaluate",
-                              "Model L1 is the specular microfacet BRDF; for " + type +
-                                  " facets set model.evaluate = false");
-    }
     const auto limit = limit_threads(o.threads);
     const int threads = worker_threads(o.threads);
     const std::string output =
@@ -56,7 +47,7 @@ int run_run_command(const RunOptions& o) {
     for (const auto& c : cfg.cases) total += c.theta_i_deg.size() * c.phi_i_deg.size();
     if (!o.quiet)
         std::printf("%-20s %7s %7s %10s %10s %10s %10s %10s %9s\n", "case", "theta_i", "phi_i",
-                    "L1", "model_L1", "rel_diff", "L2+", "T", "lost");
+                    "L1", "model", "rel_diff", "L2+", "T", "lost");
     for (size_t ci = 0; ci < cfg.cases.size(); ++ci) {
         const CaseConfig& c = cfg.cases[ci];
         const auto ndf = make_ndf(c.ndf);
@@ -70,12 +61,15 @@ int run_run_command(const RunOptions& o) {
         std::vector<const Material*> parts;
         for (const auto& m : materials) parts.push_back(m.get());
         const bool transmits = materials[0]->transmits();
-        const MicrofacetModel model(*ndf, c.fresnel, c.masking);
+        CaseModels models(c, *ndf);
+        // The terminal shows the first model of single scattering next to L1 (all are in the file).
+        int shown = -1;
+        for (size_t m = 0; m < c.models.size() && shown < 0; ++m)
+            if (models.results()[m].compared_with == "l1") shown = int(m);
         const int nc = c.channels();
         SimulationResult sim;
         sim.orders = c.orders + 1;
         sim.surface = origin.loaded ? c.surface.input : origin.cache_path;
-        ModelL1Result ml;
         Progress progress(total, o.quiet);
         for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti) {
             for (size_t pi = 0; pi < c.phi_i_deg.size(); ++pi) {
@@ -107,18 +101,8 @@ int run_run_command(const RunOptions& o) {
                 sim.rays.push_back(double(r.rays));
                 sim.segments.push_back(double(r.segments));
                 sim.seconds.push_back(r.seconds);
-                std::vector<double> albedo;
-                if (c.evaluate_model) {
-                    const auto t0 = std::chrono::steady_clock::now();
-                    const std::vector<double> e =
-                        model_cell_energy(model, wi, sensor, c.quadrature);
-                    albedo = albedo_from_cells(e, nc);
-                    ml.energy.insert(ml.energy.end(), e.begin(), e.end());
-                    ml.albedo.insert(ml.albedo.end(), albedo.begin(), albedo.end());
-                    ml.seconds.push_back(
-                        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0)
-                            .count());
-                }
+                // The models' V-cavity paths draw from their own streams (key "VCAVITY").
+                const auto model_albedos = models.evaluate(wi, sensor, cfg.seed, st.stream);
                 ++done;
                 if (!o.quiet) {
                     progress.finish();
@@ -129,9 +113,10 @@ int run_run_command(const RunOptions& o) {
                         const double l1 = r.ledger.reflected[k];
                         std::printf("%-20s %7.2f %7.2f %10.6f", c.name.c_str(), c.theta_i_deg[ti],
                                     c.phi_i_deg[pi], l1);
-                        if (c.evaluate_model)
-                            std::printf(" %10.6f %+10.4f", albedo[k], (l1 - albedo[k]) / albedo[k]);
-                        else
+                        if (shown >= 0) {
+                            const double a = model_albedos[size_t(shown)][k];
+                            std::printf(" %10.6f %+10.4f", a, (l1 - a) / a);
+                        } else
                             std::printf(" %10s %10s", "-", "-");
                         std::printf(" %10.6f", l2plus);
                         if (transmits) {
@@ -148,7 +133,7 @@ int run_run_command(const RunOptions& o) {
             }
         }
         progress.finish();
-        writer.write_simulation_case(c, sensor, sim, c.evaluate_model ? &ml : nullptr);
+        writer.write_simulation_case(c, sensor, sim, models.results());
     }
     writer.commit();
     if (!o.quiet) std::printf("wrote %s\n", output.c_str());

@@ -39,7 +39,9 @@ const std::map<std::string, std::vector<std::string>>& schema() {
         {"spectrum", {"wavelengths"}},
         {"beam", {"theta_i", "phi_i"}},
         {"sensor", {"cells"}},
-        {"model", {"masking", "quadrature", "tolerance", "evaluate"}},
+        {"model",
+         {"masking", "quadrature", "tolerance", "evaluate", "models", "body_points", "vcavity_rays",
+          "ashikhmin"}},
         {"trace", {"rays", "orders", "max_bounces"}},
         {"surface",
          {"generator", "constraint", "size", "spacing", "iterations", "threshold",
@@ -190,13 +192,52 @@ class Loader {
                                               : MaskingForm::height_correlated;
         c.quadrature.points = static_cast<int>(model.integer("quadrature", {1, 64}, 4));
         c.quadrature.rel_tol = model.number("tolerance", {1e-12, 0.1}, 1e-6);
-        c.evaluate_model = model.boolean("evaluate", true);
+        load_models(c, model);
         TableReader trace = reader(t, path, "trace");
         c.rays = trace.integer("rays", {1, 1e12}, 1 << 20);
+        if (c.vcavity_rays == 0) c.vcavity_rays = c.rays;
         c.orders = static_cast<int>(trace.integer("orders", {1, 1000}, 10));
         c.max_bounces = static_cast<int>(trace.integer("max_bounces", {1, 1000000}, 1000));
         load_surface(c, reader(t, path, "surface"));
         return c;
+    }
+
+    // Which models the case evaluates, and their settings; each must suit the material.
+    void load_models(CaseConfig& c, TableReader& r) {
+        const bool evaluate = r.boolean("evaluate", true);
+        const std::vector<std::string> fallback{c.diffuse() ? "il" : "l1"};
+        c.models = r.string_list("models", {"l1", "il", "vcavity", "ashikhmin"}, fallback);
+        if (!evaluate) c.models.clear();
+        for (const std::string& m : c.models) {
+            const bool needs_specular = m == "l1" || m == "ashikhmin";
+            if (needs_specular && c.diffuse())
+                r.fail("models", "\"" + m + "\" is a specular model; for " + c.material_type +
+                                     " facets use \"il\" (and \"vcavity\")");
+            if (m == "il" && !c.diffuse())
+                r.fail("models", "\"il\" needs lambertian or interfaced_lambertian facets, not " +
+                                     c.material_type);
+            if (m == "vcavity" && c.material_type == "dielectric")
+                r.fail("models", "\"vcavity\" follows paths inside opaque V-grooves; dielectric "
+                                 "facets transmit");
+        }
+        c.body_points = static_cast<int>(r.integer("body_points", {4, 256}, 32));
+        c.vcavity_rays = r.integer("vcavity_rays", {1, 1e12}, 0);
+        if (r.has("ashikhmin")) {
+            TableReader a = r.table("ashikhmin");
+            a.allow_only({"distribution", "sigma", "correlation_width", "diffuse", "rho_d",
+                          "theta_nodes", "phi_nodes"});
+            c.ashikhmin_distribution = a.string("distribution", {"ndf", "satin", "velvet"}, "ndf");
+            c.ashikhmin_sigma = a.number("sigma", {0.01, 10}, 0.5);
+            c.ashikhmin.correlation_width = radians(a.number("correlation_width", {0, 90}, 0.0));
+            c.ashikhmin.diffuse = a.string("diffuse", {"none", "dielectric", "metal"}, "none");
+            c.ashikhmin.rho_d = a.number_list("rho_d", {0, 1}, std::vector<double>{1.0});
+            if (c.ashikhmin.rho_d.size() != 1 && int(c.ashikhmin.rho_d.size()) != c.channels())
+                a.fail("rho_d", "has " + std::to_string(c.ashikhmin.rho_d.size()) +
+                                    " values; give one, or one per channel (" +
+                                    std::to_string(c.channels()) + ")");
+            c.ashikhmin.theta_nodes = static_cast<int>(a.integer("theta_nodes", {3, 1000}, 61));
+            c.ashikhmin.phi_nodes = static_cast<int>(a.integer("phi_nodes", {4, 1000}, 32));
+        }
     }
 
     void load_surface(CaseConfig& c, TableReader r) {

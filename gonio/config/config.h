@@ -3,6 +3,7 @@
 // channels, incidence sweep, sensor and model settings. load_config validates everything before
 // any work starts; the README's "Configuration" section is the manual of every key.
 #include "gonio/material/fresnel_term.h"
+#include "gonio/model/ashikhmin_model.h"
 #include "gonio/model/cell_integrator.h"
 #include "gonio/model/microfacet_model.h"
 #include "heightfield/ndf/make_ndf.h"
@@ -40,10 +41,18 @@ struct CaseConfig {
     CellQuadrature quadrature;
     SurfaceSpec surface; // [surface]: how the microsurface is made (defaults if absent)
     // [trace]: the simulation.
-    long long rays = 1 << 20;   // per incidence
-    int orders = 10;            // bounce orders stored separately (then one overflow order)
-    int max_bounces = 1000;     // rays still bouncing then are cut (ledger: capped); 1 = L1 only
-    bool evaluate_model = true; // [model] evaluate = false skips Model L1 in gonio run
+    long long rays = 1 << 20; // per incidence
+    int orders = 10;          // bounce orders stored separately (then one overflow order)
+    int max_bounces = 1000;   // rays still bouncing then are cut (ledger: capped); 1 = L1 only
+    // [model]: the models evaluated on the sensor cells, by name: "l1" (Model L1, the specular
+    // microfacet BRDF), "il" (interfaced Lambertian, M18), "vcavity" (V-cavity multiple
+    // scattering, M18), "ashikhmin" (A00). Empty with evaluate = false.
+    std::vector<std::string> models;
+    int body_points = 32;       // il: Gauss-Legendre nodes per axis of the body integral
+    long long vcavity_rays = 0; // vcavity: paths per incidence (default: trace.rays)
+    std::string ashikhmin_distribution = "ndf"; // "ndf" | "satin" | "velvet"
+    double ashikhmin_sigma = 0.5;               // velvet's width [A00 Eq. 35]
+    AshikhminSettings ashikhmin;
 };
 
 struct Config {

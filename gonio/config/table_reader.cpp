@@ -142,6 +142,33 @@ std::string TableReader::string(const std::string& key, const std::vector<std::s
                   "; allowed: " + list);
 }
 
+std::vector<std::string>
+TableReader::string_list(const std::string& key, const std::vector<std::string>& allowed,
+                         std::optional<std::vector<std::string>> fallback) {
+    if (!has(key) && fallback) return *fallback;
+    const toml::node& n = require(key);
+    if (n.is_string()) return {string(key, allowed)};
+    const toml::array* arr = n.as_array();
+    if (!arr) fail(key, "must be a string or an array of strings");
+    std::vector<std::string> out;
+    for (const toml::node& e : *arr) {
+        const auto v = e.value<std::string>();
+        if (!v) fail(key, "must be a string or an array of strings");
+        if (std::find(allowed.begin(), allowed.end(), *v) == allowed.end()) {
+            std::string list;
+            for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
+            const std::string guess = closest_name(*v, allowed.data(), allowed.size());
+            fail(key, "\"" + *v + "\" is not allowed" +
+                          (guess.empty() ? "" : " (did you mean \"" + guess + "\"?)") +
+                          "; allowed: " + list);
+        }
+        if (std::find(out.begin(), out.end(), *v) != out.end())
+            fail(key, "names \"" + *v + "\" twice");
+        out.push_back(*v);
+    }
+    return out;
+}
+
 double TableReader::number(const std::string& key, const Range& range,
                            std::optional<double> fallback) {
     if (!has(key) && fallback) return *fallback;

@@ -48,6 +48,10 @@ class TableReader {
     std::string string(const std::string& key, const std::vector<std::string>& allowed,
                        std::optional<std::string> fallback = std::nullopt);
     std::string any_string(const std::string& key);
+    // A string or an array of strings, each one of `allowed`, without repeats.
+    std::vector<std::string> string_list(const std::string& key,
+                                         const std::vector<std::string>& allowed,
+                                         std::optional<std::vector<std::string>> fallback);
     bool boolean(const std::string& key, std::optional<bool> fallback = std::nullopt);
     double number(const std::string& key, const Range& range,
                   std::optional<double> fallback = std::nullopt);

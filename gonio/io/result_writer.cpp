@@ -185,31 +185,47 @@ ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const Becke
     return g;
 }
 
-void ResultWriter::write_model(CaseGroup& g, const CaseConfig&, const BeckersSensor& sensor,
-                               const ModelL1Result& r) {
-    std::vector<double> brdf(r.energy.size());
-    for (size_t k = 0; k < brdf.size(); ++k)
-        brdf[k] =
-            r.energy[k] / sensor.cell(static_cast<int>((k / g.nc) % g.ncell)).projected_solid_angle;
-    g.per_cell("model_l1", brdf, "1/sr",
-               "Model L1: cell average of the specular microfacet BRDF [R19 Eq. 2]");
-    g.per_cell("model_l1_energy", r.energy, "1",
-               "Model L1: fraction of the incident power leaving into the cell");
-    g.per_incidence("model_l1_albedo", r.albedo, "1",
-                    "Model L1: directional albedo, integral of f cos(theta_o) dw_o");
-    h5::Handle t = h5::write_dataset(g.group, "model_l1_seconds", {g.nt, g.np}, {1, 1},
-                                     r.seconds.data(), "s", "wall time of the Model L1 evaluation");
-    g.attach_incidence(t);
+void ResultWriter::write_models(CaseGroup& g, const BeckersSensor& sensor,
+                                const std::vector<ModelResult>& models) {
+    std::string names;
+    for (const ModelResult& r : models) {
+        names += (names.empty() ? "" : ",") + r.name;
+        const std::string m = "model_" + r.name;
+        auto brdf_of = [&](const std::vector<double>& energy) {
+            std::vector<double> brdf(energy.size());
+            for (size_t k = 0; k < brdf.size(); ++k)
+                brdf[k] = energy[k] /
+                          sensor.cell(static_cast<int>((k / g.nc) % g.ncell)).projected_solid_angle;
+            return brdf;
+        };
+        g.per_cell(m, brdf_of(r.energy), "1/sr", r.description + ": cell averages");
+        g.per_cell(m + "_energy", r.energy, "1",
+                   r.description + ": fraction of the incident power");
+        g.per_incidence(m + "_albedo", r.albedo, "1", r.description + ": directional albedo");
+        h5::write_string_attribute(g.group, m + "_compared_with", r.compared_with);
+        h5::Handle t = h5::write_dataset(g.group, m + "_seconds", {g.nt, g.np}, {1, 1},
+                                         r.seconds.data(), "s", "wall time of the evaluation");
+        g.attach_incidence(t);
+        if (!r.first_energy.empty()) { // the V-cavity's orders
+            g.per_cell(m + "_l1", brdf_of(r.first_energy), "1/sr",
+                       "single scattering in V-cavities");
+            g.per_incidence(m + "_l1_albedo", r.l1_albedo, "1", "single-scattering albedo");
+            g.per_incidence(m + "_l2plus_albedo", r.l2plus_albedo, "1",
+                            "multiple-scattering albedo");
+        }
+    }
+    h5::write_string_attribute(g.group, "models", names);
 }
 
 void ResultWriter::write_model_case(const CaseConfig& c, const BeckersSensor& sensor,
-                                    const ModelL1Result& r) {
+                                    const std::vector<ModelResult>& models) {
     CaseGroup g = open_case(c, sensor);
-    write_model(g, c, sensor, r);
+    write_models(g, sensor, models);
 }
 
 void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSensor& sensor,
-                                         const SimulationResult& sim, const ModelL1Result* model) {
+                                         const SimulationResult& sim,
+                                         const std::vector<ModelResult>& models) {
     CaseGroup g = open_case(c, sensor);
     h5::write_string_attribute(g.group, "surface", sim.surface);
     h5::write_int_attribute(g.group, "rays_per_incidence", c.rays);
@@ -300,32 +316,45 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
                                          std::string(name) == "trace_seconds" ? "s" : "", what);
         g.attach_incidence(d);
     }
-    if (!model) return;
-    write_model(g, c, sensor, *model);
-    // Comparison: albedos, their relative difference, the per-cell relative L1 distance
+    write_models(g, sensor, models);
+    // Each model against what it models (single scattering or every order): albedos, their
+    // relative difference, the per-cell relative L1 distance
     // sum |f_sim - f_model| Omega / sum f_model Omega, and the ratio map (0 where the model is 0).
-    std::vector<double> rel(maps * nc), dist(maps * nc), ratio(maps * ncell * nc, 0.0);
-    for (size_t m = 0; m < maps; ++m)
-        for (size_t k = 0; k < nc; ++k) {
-            const double am = model->albedo[m * nc + k];
-            rel[m * nc + k] = am > 0 ? (a1[m * nc + k] - am) / am : 0.0;
-            double num = 0, den = 0;
-            for (size_t cell = 0; cell < ncell; ++cell) {
-                const size_t i = (m * ncell + cell) * nc + k;
-                const double es = sim.energy[(m * no * ncell + cell) * nc + k]; // order 1
-                const double em = model->energy[i];
-                num += std::abs(es - em);
-                den += em;
-                ratio[i] = em > 0 ? es / em : 0.0;
+    for (const ModelResult& model : models) {
+        const bool all_orders = model.compared_with == "linf";
+        std::vector<double> rel(maps * nc), dist(maps * nc), ratio(maps * ncell * nc, 0.0);
+        for (size_t m = 0; m < maps; ++m)
+            for (size_t k = 0; k < nc; ++k) {
+                double sim_albedo = 0;
+                for (size_t o = 0; o < (all_orders ? no : 1); ++o)
+                    sim_albedo += sim.order_energy[(m * no + o) * nc + k];
+                const double am = model.albedo[m * nc + k];
+                rel[m * nc + k] = am > 0 ? (sim_albedo - am) / am : 0.0;
+                double num = 0, den = 0;
+                for (size_t cell = 0; cell < ncell; ++cell) {
+                    const size_t i = (m * ncell + cell) * nc + k;
+                    double es = 0;
+                    for (size_t o = 0; o < (all_orders ? no : 1); ++o)
+                        es += sim.energy[((m * no + o) * ncell + cell) * nc + k];
+                    const double em = model.energy[i];
+                    num += std::abs(es - em);
+                    den += em;
+                    ratio[i] = em > 0 ? es / em : 0.0;
+                }
+                dist[m * nc + k] = den > 0 ? num / den : 0.0;
             }
-            dist[m * nc + k] = den > 0 ? num / den : 0.0;
-        }
-    g.per_incidence("l1_relative_difference", rel, "1",
-                    "(simulated L1 albedo - model L1 albedo) / model L1 albedo");
-    g.per_incidence(
-        "l1_distance", dist, "1",
-        "sum |f_sim - f_model| Omega_perp / sum f_model Omega_perp over the cells (L1)");
-    g.per_cell("l1_ratio", ratio, "1", "simulated L1 / model L1 per cell (0 where the model is 0)");
+        const std::string what = all_orders ? "every order" : "L1";
+        const std::string n = model.name;
+        g.per_incidence(n + "_relative_difference", rel, "1",
+                        "(simulated " + what + " albedo - model_" + n + " albedo) / model_" + n +
+                            " albedo");
+        g.per_incidence(
+            n + "_distance", dist, "1",
+            "sum |f_sim - f_model| Omega_perp / sum f_model Omega_perp over the cells (" + what +
+                " against model_" + n + ")");
+        g.per_cell(n + "_ratio", ratio, "1",
+                   "simulated " + what + " / model_" + n + " per cell (0 where the model is 0)");
+    }
 }
 
 void ResultWriter::commit() {

@@ -5,19 +5,13 @@
 // name and renamed when complete, so a failed run leaves nothing half-written.
 #include "gonio/config/config.h"
 #include "gonio/io/hdf5_handles.h"
+#include "gonio/model/case_models.h"
 #include "sensor/beckers_sensor.h"
 
 #include <string>
 #include <vector>
 
 namespace gonio {
-
-// Model L1 of one case, over its incidence sweep (theta_i major, then phi_i).
-struct ModelL1Result {
-    std::vector<double> energy;  // [theta_i][phi_i][cell][channel]: fraction of incident power
-    std::vector<double> albedo;  // [theta_i][phi_i][channel]
-    std::vector<double> seconds; // [theta_i][phi_i]: wall time of the evaluation
-};
 
 // The simulation of one case over its sweep (theta_i major, then phi_i).
 struct SimulationResult {
@@ -40,13 +34,14 @@ class ResultWriter {
     ResultWriter& operator=(const ResultWriter&) = delete;
 
     void write_run(const Config& cfg, const std::string& command_line);
-    void write_model_case(const CaseConfig& c, const BeckersSensor& sensor, const ModelL1Result& r);
+    void write_model_case(const CaseConfig& c, const BeckersSensor& sensor,
+                          const std::vector<ModelResult>& models);
     // The simulated BRDF per order, L1 / L2+ / L-infinity (and the BTDF of a transmissive
-    // material on the lower sensor), the ledger, and, when `model` is given,
-    // Model L1 on the same cells with the comparison (albedos, relative difference, per-cell
-    // relative L1 distance, ratio map).
+    // material on the lower sensor), the ledger, and the models on the same cells, each with
+    // its comparison against the simulated quantity it models (albedos, relative difference,
+    // per-cell relative L1 distance, ratio map).
     void write_simulation_case(const CaseConfig& c, const BeckersSensor& sensor,
-                               const SimulationResult& sim, const ModelL1Result* model);
+                               const SimulationResult& sim, const std::vector<ModelResult>& models);
     // Closes the file and renames it to its final path.
     void commit();
 
@@ -55,8 +50,8 @@ class ResultWriter {
   private:
     struct CaseGroup;
     CaseGroup open_case(const CaseConfig& c, const BeckersSensor& sensor);
-    void write_model(CaseGroup& g, const CaseConfig& c, const BeckersSensor& sensor,
-                     const ModelL1Result& r);
+    void write_models(CaseGroup& g, const BeckersSensor& sensor,
+                      const std::vector<ModelResult>& models);
 
     std::string path_, tmp_path_;
     h5::Handle file_;

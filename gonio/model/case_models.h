@@ -1,0 +1,49 @@
+#pragma once
+// The models a case asks for ([model] models), built once per case and evaluated on the sensor
+// cells at each incidence of its sweep. Each result says which simulated quantity it is held
+// against: single scattering (L1) or every order (L-infinity).
+#include "gonio/config/config.h"
+#include "gonio/model/brdf_model.h"
+#include "heightfield/ndf/ndf.h"
+#include "sensor/beckers_sensor.h"
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+// One model over a case's sweep (theta_i major, then phi_i).
+struct ModelResult {
+    std::string name;          // "l1", "il", "vcavity", "ashikhmin"
+    std::string compared_with; // "l1" or "linf": the simulated BRDF it models
+    std::string description;
+    std::vector<double> energy;  // [theta_i][phi_i][cell][channel]: fraction of incident power
+    std::vector<double> albedo;  // [theta_i][phi_i][channel]
+    std::vector<double> seconds; // [theta_i][phi_i]
+    // V-cavity only: its single-scattering part and albedos per order.
+    std::vector<double> first_energy;             // [theta_i][phi_i][cell][channel]
+    std::vector<double> l1_albedo, l2plus_albedo; // [theta_i][phi_i][channel]
+};
+
+class CaseModels {
+  public:
+    // Keeps references to c and ndf. Builds the analytic models (Ashikhmin's tables take seconds).
+    CaseModels(const CaseConfig& c, const Ndf& ndf);
+    ~CaseModels();
+    // Evaluates every model at incidence wi and appends to results(); the V-cavity paths use
+    // (seed, stream) for their random streams. Returns the albedos, [model][channel].
+    std::vector<std::vector<double>> evaluate(const Vec3& wi, const BeckersSensor& sensor,
+                                              std::uint64_t seed, std::uint64_t stream);
+    const std::vector<ModelResult>& results() const { return results_; }
+
+  private:
+    const CaseConfig& c_;
+    const Ndf& ndf_;
+    std::vector<std::unique_ptr<BrdfModel>> analytic_; // per model; null for the V-cavity
+    std::unique_ptr<class Material> facet_;            // the V-cavity's facets
+    std::vector<ModelResult> results_;
+};
+
+} // namespace gonio
