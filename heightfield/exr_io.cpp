@@ -1,5 +1,7 @@
 #include "heightfield/exr_io.h"
 
+#include "heightfield/frankot_chellappa.h"
+
 #include <ImfChannelList.h>
 #include <ImfDoubleAttribute.h>
 #include <ImfFrameBuffer.h>
@@ -76,6 +78,31 @@ HeightField read_height_exr(const std::string& path, ExrAttributes* attrs) {
             throw std::runtime_error("the height map must be square (it is " + std::to_string(w) +
                                      " x " + std::to_string(h) + ")");
         if (w < 2) throw std::runtime_error("the height map must be at least 2 x 2");
+        const Imf::ChannelList& ch = file.header().channels();
+        if (ch.findChannel("R") && ch.findChannel("G") && ch.findChannel("B") &&
+            !ch.findChannel("Y") && !ch.findChannel("Z") && !ch.findChannel("H")) {
+            // A normal map: (R, G, B) is the unit normal (x, y, z) of each texel; its slopes are
+            // integrated into heights by least squares (Frankot-Chellappa, R19 Eq. 20-21), whose
+            // forward differences -- the triangles' slopes -- then reproduce an integrable map.
+            std::vector<float> nx(size_t(w) * w), ny(nx.size()), nz(nx.size());
+            Imf::FrameBuffer fb;
+            const size_t offset = size_t(dw.min.x) + size_t(dw.min.y) * w;
+            for (auto [name, v] : {std::pair{"R", &nx}, {"G", &ny}, {"B", &nz}})
+                fb.insert(name, Imf::Slice(Imf::FLOAT, (char*)(v->data() - offset), sizeof(float),
+                                           sizeof(float) * size_t(w)));
+            file.setFrameBuffer(fb);
+            file.readPixels(dw.min.y, dw.max.y);
+            std::vector<float> p(nx.size()), q(nx.size());
+            for (size_t k = 0; k < nx.size(); ++k) {
+                if (!(nz[k] > 0) || !std::isfinite(nx[k]) || !std::isfinite(ny[k]))
+                    throw std::runtime_error("a normal map's normals must point up (B > 0)");
+                p[k] = -nx[k] / nz[k], q[k] = -ny[k] / nz[k];
+            }
+            HeightField s(w, 1.0);
+            FrankotChellappa(w, 1).integrate(p, q, s.h);
+            if (attrs) attrs->text["gonio_source"] = "normal map";
+            return s;
+        }
         std::string channel;
         for (const char* name : {"Y", "Z", "H", "R"})
             if (file.header().channels().findChannel(name)) {
@@ -110,6 +137,23 @@ HeightField read_height_exr(const std::string& path, ExrAttributes* attrs) {
     } catch (const std::exception& e) {
         throw std::runtime_error(path + ": cannot read height map: " + e.what());
     }
+}
+
+} // namespace gonio
+
+namespace gonio {
+
+void write_normal_exr(const std::string& path, const HeightField& surface,
+                      const ExrAttributes& attrs) {
+    const int n = surface.n;
+    std::vector<std::vector<float>> rgb(3, std::vector<float>(size_t(n) * n));
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const Vec3 m = HeightField::normal_of_slopes(surface.p(x, y), surface.q(x, y));
+            const size_t k = size_t(y) * n + x;
+            rgb[0][k] = float(m.x), rgb[1][k] = float(m.y), rgb[2][k] = float(m.z);
+        }
+    write_channels_exr(path, n, n, {"R", "G", "B"}, rgb, attrs);
 }
 
 } // namespace gonio

@@ -19,13 +19,19 @@ struct ExrAttributes {
 void write_height_exr(const std::string& path, const HeightField& surface,
                       const ExrAttributes& attrs);
 
-// Reads a single-channel square height map (channel Y, Z, H or R). The spacing comes from the
-// gonio_spacing attribute, else 1. Throws std::runtime_error naming the file when it is missing,
-// corrupt, not square or has no usable channel.
+// Reads a single-channel square height map (channel Y, Z, H or R), or a normal map (channels R, G,
+// B holding the unit normal, no Y/Z/H) integrated into heights by Frankot-Chellappa (spacing 1).
+// The spacing comes from the gonio_spacing attribute, else 1. Throws std::runtime_error naming the
+// file when it is missing, corrupt, not square or has no usable channel.
 HeightField read_height_exr(const std::string& path, ExrAttributes* attrs = nullptr);
 
 // A multi-channel float image (e.g. measured vs target NDF maps), channels named in `names`,
 // each width*height values row-major.
+// The surface's normal map: per sample the normal of the slopes (p(x, y), q(x, y)) (its triangle
+// A, heightfield.h) as R, G, B; read_height_exr integrates it back into the same heights.
+void write_normal_exr(const std::string& path, const HeightField& surface,
+                      const ExrAttributes& attrs);
+
 void write_channels_exr(const std::string& path, int width, int height,
                         const std::vector<std::string>& names,
                         const std::vector<std::vector<float>>& channels,

@@ -55,14 +55,19 @@ FrankotChellappa::FrankotChellappa(int n, int threads) : n_(n) {
         dy_re_[v] = float(std::cos(kTwoPi * v / n) - 1.0);
         dy_im_[v] = float(std::sin(kTwoPi * v / n));
     }
-    // The least-squares weights 1 / (|a|^2 + |b|^2), with the inverse transform's 1/n^2; the mean
-    // height (u = v = 0) is free: zero.
-    const int w = n / 2 + 1;
+    set_metric(1.0, 1.0);
+}
+
+void FrankotChellappa::set_metric(double wx, double wy) {
+    // The least-squares weights 1 / (wx |a|^2 + wy |b|^2), with the inverse transform's 1/n^2; the
+    // mean height (u = v = 0) is free: zero.
+    const int n = n_, w = n / 2 + 1;
+    wx_ = float(wx), wy_ = float(wy);
     inv_denom_.resize(size_t(n) * w);
     for (int v = 0; v < n; ++v)
         for (int u = 0; u < w; ++u) {
-            const double d = double(dx_re_[u]) * dx_re_[u] + double(dx_im_[u]) * dx_im_[u] +
-                             double(dy_re_[v]) * dy_re_[v] + double(dy_im_[v]) * dy_im_[v];
+            const double d = wx * (double(dx_re_[u]) * dx_re_[u] + double(dx_im_[u]) * dx_im_[u]) +
+                             wy * (double(dy_re_[v]) * dy_re_[v] + double(dy_im_[v]) * dy_im_[v]);
             inv_denom_[size_t(v) * w + u] = d > 0 ? float(1.0 / (d * double(n) * n)) : 0.0f;
         }
 }
@@ -95,13 +100,14 @@ void FrankotChellappa::integrate() {
     fft_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
     const int w = n_ / 2 + 1;
     tbb::parallel_for(0, n_, [&](int v) {
-        const float br = dy_re_[v], bi = dy_im_[v];
+        const float br = wy_ * dy_re_[v], bi = wy_ * dy_im_[v];
         fftwf_complex* P = spec_p_ + size_t(v) * w;
         const fftwf_complex* Q = spec_q_ + size_t(v) * w;
         const float* k = &inv_denom_[size_t(v) * w];
         for (int u = 0; u < w; ++u) {
-            const float ar = dx_re_[u], ai = dx_im_[u];
-            // (conj(a) P + conj(b) Q) / (|a|^2 + |b|^2)   [R19 Eq. 21, forward-difference form]
+            const float ar = wx_ * dx_re_[u], ai = wx_ * dx_im_[u];
+            // (wx conj(a) P + wy conj(b) Q) / (wx |a|^2 + wy |b|^2)  [R19 Eq. 21, forward
+            // differences; wx = wy = 1 is the plain least squares]
             const float re = ar * P[u][0] + ai * P[u][1] + br * Q[u][0] + bi * Q[u][1];
             const float im = ar * P[u][1] - ai * P[u][0] + br * Q[u][1] - bi * Q[u][0];
             P[u][0] = re * k[u];

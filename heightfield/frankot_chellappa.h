@@ -21,6 +21,10 @@ class FrankotChellappa {
     FrankotChellappa& operator=(const FrankotChellappa&) = delete;
 
     int size() const { return n_; }
+    // Weights of the two residuals: minimise wx |D_x h - p|^2 + wy |D_y h - q|^2 (default 1, 1).
+    // With wx = 1/ax^2, wy = 1/ay^2 the projection is orthogonal in the stretched slope frame where
+    // an anisotropic shape-invariant target is isotropic (the sliced generator's metric).
+    void set_metric(double wx, double wy);
     // Heights (zero mean) whose forward differences best match p and q (row-major, n x n, per
     // unit spacing).
     void integrate(const std::vector<float>& p, const std::vector<float>& q, std::vector<float>& h);
@@ -46,7 +50,8 @@ class FrankotChellappa {
     fftwf_plan forward_p_ = nullptr, forward_q_ = nullptr, backward_ = nullptr;
     std::vector<float> weight_re_, weight_im_; // conj(a)/(|a|^2+|b|^2) per frequency (x part)
     std::vector<float> dx_re_, dx_im_, dy_re_, dy_im_;
-    std::vector<float> inv_denom_; // scale / (|a|^2 + |b|^2) per frequency, 0 at (0, 0)
+    std::vector<float> inv_denom_; // scale / (wx |a|^2 + wy |b|^2) per frequency, 0 at (0, 0)
+    float wx_ = 1, wy_ = 1;
 };
 
 // Calls fftwf_init_threads once; safe to call repeatedly.

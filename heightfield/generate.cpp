@@ -368,6 +368,11 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
             marginal.push_back(float(pool_p[k] / ax)), marginal.push_back(float(pool_q[k] / ay));
         tbb::parallel_sort(marginal.begin(), marginal.end());
         quantile = std::make_unique<Quantiles>(std::move(marginal));
+        // Project onto integrable fields in the same stretched metric the transport works in:
+        // with the plain metric, a strongly anisotropic target (alpha_y / alpha_x ~ 7) leaks the
+        // wide axis's residual into the narrow one, which the stretch amplifies, and the
+        // iteration diverges.
+        if (ax != ay) fc.set_metric(1 / (ax * ax), 1 / (ay * ay));
     } else if (spec.generator == "algorithm1") {
         assigned.resize(cells);
         for (size_t k = 0; k < cells; ++k) assigned[k] = int(k);

@@ -5,6 +5,7 @@
 #include "gonio/config/config_error.h"
 #include "gonio/io/result_writer.h"
 #include "gonio/model/case_models.h"
+#include "heightfield/surface_source.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -41,7 +42,14 @@ int run_model_command(const ModelOptions& options) {
         const CaseConfig& c = cfg.cases[ci];
         const BeckersSensor sensor(c.sensor_cells);
         const auto ndf = make_ndf(c.ndf);
-        CaseModels models(c, *ndf);
+        // The P-BRDF is fitted to the surface's slopes: made (or taken from the default cache).
+        HeightField surface;
+        if (c.needs_surface()) {
+            SurfaceOrigin origin;
+            surface = obtain_surface(*ndf, c.surface, surface_cache(false, ""),
+                                     worker_threads(options.threads), origin);
+        }
+        CaseModels models(c, *ndf, c.needs_surface() ? &surface : nullptr);
         for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti) {
             for (size_t pi = 0; pi < c.phi_i_deg.size(); ++pi) {
                 const double theta = c.theta_i_deg[ti], phi = c.phi_i_deg[pi];

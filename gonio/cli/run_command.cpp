@@ -61,7 +61,7 @@ int run_run_command(const RunOptions& o) {
         std::vector<const Material*> parts;
         for (const auto& m : materials) parts.push_back(m.get());
         const bool transmits = materials[0]->transmits();
-        CaseModels models(c, *ndf);
+        CaseModels models(c, *ndf, &surface);
         // The terminal shows the first model of single scattering next to L1 (all are in the file).
         int shown = -1;
         for (size_t m = 0; m < c.models.size() && shown < 0; ++m)

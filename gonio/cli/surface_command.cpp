@@ -84,7 +84,8 @@ int run_surface_command(const SurfaceOptions& o) {
     // Refuse to replace outputs before any work.
     for (const CaseConfig& c : cfg.cases) {
         const std::string out = output_for(o, cfg, c);
-        for (const std::string& f : {out, sibling(out, "_ndf.exr"), sibling(out, "_ndf.csv")})
+        for (const std::string& f : {out, sibling(out, "_ndf.exr"), sibling(out, "_ndf.csv"),
+                                     sibling(out, "_normals.exr")})
             if (!o.overwrite && fs::exists(f))
                 throw std::runtime_error(f + ": exists; pass --overwrite to replace it");
     }
@@ -124,6 +125,7 @@ int run_surface_command(const SurfaceOptions& o) {
         attrs.numbers["gonio_height_min"] = m.height_min;
         attrs.numbers["gonio_height_max"] = m.height_max;
         write_height_exr(out, surface, attrs);
+        write_normal_exr(sibling(out, "_normals.exr"), surface, attrs);
         write_ndf_comparison(sibling(out, "_ndf.exr"), sibling(out, "_ndf.csv"), m,
                              ndf->describe());
         if (!origin.warning.empty())
@@ -159,8 +161,8 @@ int run_surface_command(const SurfaceOptions& o) {
         std::printf("\n  heights: RMS %.4g, range [%.4g, %.4g], correlation length x %.3g y %.3g\n",
                     m.height_rms, m.height_min, m.height_max, m.correlation_length_x,
                     m.correlation_length_y);
-        std::printf("  wrote %s, %s, %s\n", out.c_str(), sibling(out, "_ndf.exr").c_str(),
-                    sibling(out, "_ndf.csv").c_str());
+        std::printf("  wrote %s, %s, %s, %s\n", out.c_str(), sibling(out, "_normals.exr").c_str(),
+                    sibling(out, "_ndf.exr").c_str(), sibling(out, "_ndf.csv").c_str());
     }
     return 0;
 }

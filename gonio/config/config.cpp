@@ -41,7 +41,7 @@ const std::map<std::string, std::vector<std::string>>& schema() {
         {"sensor", {"cells"}},
         {"model",
          {"masking", "quadrature", "tolerance", "evaluate", "models", "body_points", "vcavity_rays",
-          "ashikhmin"}},
+          "ashikhmin", "pbrdf_sigma_eps"}},
         {"trace", {"rays", "orders", "max_bounces"}},
         {"surface",
          {"generator", "constraint", "size", "spacing", "iterations", "threshold",
@@ -206,10 +206,10 @@ class Loader {
     void load_models(CaseConfig& c, TableReader& r) {
         const bool evaluate = r.boolean("evaluate", true);
         const std::vector<std::string> fallback{c.diffuse() ? "il" : "l1"};
-        c.models = r.string_list("models", {"l1", "il", "vcavity", "ashikhmin"}, fallback);
+        c.models = r.string_list("models", {"l1", "il", "vcavity", "ashikhmin", "pbrdf"}, fallback);
         if (!evaluate) c.models.clear();
         for (const std::string& m : c.models) {
-            const bool needs_specular = m == "l1" || m == "ashikhmin";
+            const bool needs_specular = m == "l1" || m == "ashikhmin" || m == "pbrdf";
             if (needs_specular && c.diffuse())
                 r.fail("models", "\"" + m + "\" is a specular model; for " + c.material_type +
                                      " facets use \"il\" (and \"vcavity\")");
@@ -222,6 +222,7 @@ class Loader {
         }
         c.body_points = static_cast<int>(r.integer("body_points", {4, 256}, 32));
         c.vcavity_rays = r.integer("vcavity_rays", {1, 1e12}, 0);
+        c.pbrdf_sigma_eps = r.number("pbrdf_sigma_eps", {1e-4, 1}, 0.01);
         if (r.has("ashikhmin")) {
             TableReader a = r.table("ashikhmin");
             a.allow_only({"distribution", "sigma", "correlation_width", "diffuse", "rho_d",

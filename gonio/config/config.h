@@ -46,13 +46,18 @@ struct CaseConfig {
     int max_bounces = 1000;   // rays still bouncing then are cut (ledger: capped); 1 = L1 only
     // [model]: the models evaluated on the sensor cells, by name: "l1" (Model L1, the specular
     // microfacet BRDF), "il" (interfaced Lambertian, M18), "vcavity" (V-cavity multiple
-    // scattering, M18), "ashikhmin" (A00). Empty with evaluate = false.
+    // scattering, M18), "ashikhmin" (A00), "pbrdf" (C19, fitted to the traced surface's slopes).
+    // Empty with evaluate = false.
     std::vector<std::string> models;
     int body_points = 32;       // il: Gauss-Legendre nodes per axis of the body integral
     long long vcavity_rays = 0; // vcavity: paths per incidence (default: trace.rays)
     std::string ashikhmin_distribution = "ndf"; // "ndf" | "satin" | "velvet"
     double ashikhmin_sigma = 0.5;               // velvet's width [A00 Eq. 35]
     AshikhminSettings ashikhmin;
+    double pbrdf_sigma_eps = 0.01; // C19's floor on the lobes' slope deviations
+    bool needs_surface() const {
+        return std::find(models.begin(), models.end(), "pbrdf") != models.end();
+    }
 };
 
 struct Config {

@@ -6,9 +6,11 @@
 #include "gonio/model/cell_integrator.h"
 #include "gonio/model/interfaced_lambertian_model.h"
 #include "gonio/model/microfacet_model.h"
+#include "gonio/model/pbrdf_model.h"
 #include "gonio/model/vcavity_estimator.h"
 
 #include <chrono>
+#include <stdexcept>
 
 namespace gonio {
 
@@ -26,7 +28,8 @@ std::vector<double> interface_eta(const CaseConfig& c) {
 }
 } // namespace
 
-CaseModels::CaseModels(const CaseConfig& c, const Ndf& ndf) : c_(c), ndf_(ndf) {
+CaseModels::CaseModels(const CaseConfig& c, const Ndf& ndf, const HeightField* surface)
+    : c_(c), ndf_(ndf) {
     for (const std::string& name : c.models) {
         ModelResult r;
         r.name = name;
@@ -51,6 +54,12 @@ CaseModels::CaseModels(const CaseConfig& c, const Ndf& ndf) : c_(c), ndf_(ndf) {
             analytic_.push_back(
                 std::make_unique<AshikhminModel>(std::move(p), c.fresnel, c.ashikhmin));
             if (c.ashikhmin.diffuse != "none") r.compared_with = "linf";
+        } else if (name == "pbrdf") {
+            if (!surface) throw std::logic_error("the P-BRDF is fitted to the case's surface");
+            analytic_.push_back(std::make_unique<PBrdfModel>(
+                fit_slope_lobes(*surface, c.pbrdf_sigma_eps), c.fresnel));
+            r.description = "Chermain et al.'s P-BRDF [C19 Eq. 7, 9, 13-17]: one non-centred "
+                            "Beckmann lobe per texel of the surface, the whole patch as footprint";
         } else { // vcavity
             analytic_.push_back(nullptr);
             facet_ = opaque_facet(c);

@@ -4,6 +4,7 @@
 // against: single scattering (L1) or every order (L-infinity).
 #include "gonio/config/config.h"
 #include "gonio/model/brdf_model.h"
+#include "heightfield/heightfield.h"
 #include "heightfield/ndf/ndf.h"
 #include "sensor/beckers_sensor.h"
 
@@ -16,7 +17,7 @@ namespace gonio {
 
 // One model over a case's sweep (theta_i major, then phi_i).
 struct ModelResult {
-    std::string name;          // "l1", "il", "vcavity", "ashikhmin"
+    std::string name;          // "l1", "il", "vcavity", "ashikhmin", "pbrdf"
     std::string compared_with; // "l1" or "linf": the simulated BRDF it models
     std::string description;
     std::vector<double> energy;  // [theta_i][phi_i][cell][channel]: fraction of incident power
@@ -29,8 +30,9 @@ struct ModelResult {
 
 class CaseModels {
   public:
-    // Keeps references to c and ndf. Builds the analytic models (Ashikhmin's tables take seconds).
-    CaseModels(const CaseConfig& c, const Ndf& ndf);
+    // Keeps references to c and ndf. Builds the analytic models (Ashikhmin's tables take seconds);
+    // the P-BRDF is fitted to `surface`, which it needs (c.needs_surface()).
+    CaseModels(const CaseConfig& c, const Ndf& ndf, const HeightField* surface = nullptr);
     ~CaseModels();
     // Evaluates every model at incidence wi and appends to results(); the V-cavity paths use
     // (seed, stream) for their random streams. Returns the albedos, [model][channel].
