@@ -87,6 +87,25 @@ TEST_CASE("A00: reciprocal, and energy conserving [section 5.3] for several dist
     }
 }
 
+TEST_CASE("A00 velvet [Eq. 35]: reciprocal, and retroreflective with the correlated term") {
+    AshikhminSettings s;
+    s.correlation_width = radians(15.0);
+    s.theta_nodes = 31;
+    const AshikhminModel velvet(velvet_density(0.5), FresnelTerm::schlick({0.05}), s);
+    CHECK(velvet.isotropic());
+    const Vec3 i = spherical_direction(radians(70.0), 0.0);
+    const Vec3 o = spherical_direction(radians(40.0), radians(170.0));
+    double a = 0, b = 0;
+    velvet.eval(i, o, &a);
+    velvet.eval(o, i, &b);
+    CHECK(a == doctest::Approx(b).epsilon(1e-12));
+    // Fibres lying down reflect grazing light back towards it [A00 section 6.4].
+    double back = 0, forward = 0;
+    velvet.eval(i, spherical_direction(radians(70.0), 0.0), &back);
+    velvet.eval(i, spherical_direction(radians(70.0), kPi), &forward);
+    CHECK(back > forward);
+}
+
 TEST_CASE("A00 diffuse term [Eq. 28-30]: a white surface returns everything; a metal keeps f0") {
     const Ggx ndf(0.4, 0.4);
     const BeckersSensor sensor(577);

@@ -388,3 +388,45 @@ TEST_CASE("interfaced Lambertian materials: eta and albedo per channel, and thei
                      .what(),
                  "give one (achromatic) or one per wavelength (3)"));
 }
+
+TEST_CASE("models per case: defaults by material, lists, what each needs, Ashikhmin's settings") {
+    const std::string head = "[ndf]\ntype = \"beckmann\"\nalpha = 0.5\n[beam]\ntheta_i = 30\n";
+    const std::string il =
+        "[material]\ntype = \"interfaced_lambertian\"\neta = 1.5\nalbedo = 0.6\n";
+    CHECK(parse_config(head, "t.toml").cases[0].models == std::vector<std::string>{"l1"});
+    CHECK(parse_config(head + il, "t.toml").cases[0].models == std::vector<std::string>{"il"});
+    CHECK(parse_config(head + il, "t.toml", {"model.evaluate=false"}).cases[0].models.empty());
+    const Config both = parse_config(head + il +
+                                         "[model]\nmodels = [\"il\", \"vcavity\"]\n"
+                                         "vcavity_rays = 1000\nmasking = \"v-cavity\"\n",
+                                     "t.toml");
+    CHECK(both.cases[0].models == std::vector<std::string>{"il", "vcavity"});
+    CHECK(both.cases[0].vcavity_rays == 1000);
+    CHECK(both.cases[0].masking == MaskingForm::v_cavity);
+    CHECK(parse_config(head, "t.toml").cases[0].vcavity_rays == 1 << 20); // trace.rays
+    CHECK(contains(error_of(head + il + "[model]\nmodels = \"l1\"\n").what(),
+                   "key 'model.models': \"l1\" is a specular model"));
+    CHECK(contains(error_of(head + "[model]\nmodels = \"il\"\n").what(),
+                   "\"il\" needs lambertian or interfaced_lambertian facets, not mirror"));
+    CHECK(contains(error_of(head + "[material]\ntype = \"dielectric\"\neta = 1.5\n"
+                                   "[model]\nmodels = \"vcavity\"\n")
+                       .what(),
+                   "dielectric facets transmit"));
+    CHECK(contains(error_of(head + "[model]\nmodels = [\"l1\", \"ashikmin\"]\n").what(),
+                   "(did you mean \"ashikhmin\"?)"));
+    CHECK(contains(error_of(head + "[model]\nmodels = [\"l1\", \"l1\"]\n").what(),
+                   "names \"l1\" twice"));
+    const Config a = parse_config(
+        head + "[model]\nmodels = \"ashikhmin\"\nashikhmin = { distribution = \"velvet\", "
+               "sigma = 0.4, correlation_width = 15, diffuse = \"metal\" }\n",
+        "t.toml");
+    CHECK(a.cases[0].ashikhmin_distribution == "velvet");
+    CHECK(a.cases[0].ashikhmin_sigma == 0.4);
+    CHECK(a.cases[0].ashikhmin.correlation_width == doctest::Approx(radians(15.0)));
+    CHECK(a.cases[0].ashikhmin.diffuse == "metal");
+    CHECK(contains(error_of(head + "[model]\nashikhmin = { diffuse = \"lambert\" }\n").what(),
+                   "key 'model.ashikhmin.diffuse'"));
+    CHECK(
+        contains(error_of(head + "[model]\nashikhmin = { rho = 1 }\n").what(), "model.ashikhmin"));
+    CHECK(parse_config(head + "[model]\nmodels = \"pbrdf\"\n", "t.toml").cases[0].needs_surface());
+}

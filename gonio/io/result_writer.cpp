@@ -210,6 +210,7 @@ void ResultWriter::write_models(CaseGroup& g, const BeckersSensor& sensor,
             g.per_cell(m + "_l1", brdf_of(r.first_energy), "1/sr",
                        "single scattering in V-cavities");
             g.per_incidence(m + "_l1_albedo", r.l1_albedo, "1", "single-scattering albedo");
+            g.per_incidence(m + "_l2_albedo", r.l2_albedo, "1", "second-order albedo");
             g.per_incidence(m + "_l2plus_albedo", r.l2plus_albedo, "1",
                             "multiple-scattering albedo");
         }

@@ -88,7 +88,7 @@ std::vector<std::vector<double>> CaseModels::evaluate(const Vec3& wi, const Beck
         } else {
             TraceSettings st;
             st.rays = c_.vcavity_rays;
-            st.orders = 1; // single scattering, then every higher order together
+            st.orders = 2; // f1, f2, then every higher order together [M18 Fig. 9]
             st.max_bounces = c_.max_bounces;
             st.seed = seed, st.stream = stream;
             const TraceResult v = vcavity_estimate(ndf_, *facet_, sensor, wi, st);
@@ -97,7 +97,12 @@ std::vector<std::vector<double>> CaseModels::evaluate(const Vec3& wi, const Beck
             for (size_t e = 0; e < v.energy.size(); ++e) energy[e % per_order] += v.energy[e];
             append(r.first_energy, {v.energy.begin(), v.energy.begin() + long(per_order)});
             append(r.l1_albedo, {v.ledger.reflected.begin(), v.ledger.reflected.begin() + nc});
-            append(r.l2plus_albedo, {v.ledger.reflected.begin() + nc, v.ledger.reflected.end()});
+            append(r.l2_albedo,
+                   {v.ledger.reflected.begin() + nc, v.ledger.reflected.begin() + 2 * nc});
+            std::vector<double> higher(size_t(nc), 0.0);
+            for (size_t e = size_t(nc); e < v.ledger.reflected.size(); ++e)
+                higher[e % size_t(nc)] += v.ledger.reflected[e];
+            append(r.l2plus_albedo, higher);
         }
         const std::vector<double> albedo = albedo_from_cells(energy, nc);
         append(r.energy, energy);

@@ -24,8 +24,8 @@ struct ModelResult {
     std::vector<double> albedo;  // [theta_i][phi_i][channel]
     std::vector<double> seconds; // [theta_i][phi_i]
     // V-cavity only: its single-scattering part and albedos per order.
-    std::vector<double> first_energy;             // [theta_i][phi_i][cell][channel]
-    std::vector<double> l1_albedo, l2plus_albedo; // [theta_i][phi_i][channel]
+    std::vector<double> first_energy;                        // [theta_i][phi_i][cell][channel]
+    std::vector<double> l1_albedo, l2_albedo, l2plus_albedo; // [theta_i][phi_i][channel]
 };
 
 class CaseModels {

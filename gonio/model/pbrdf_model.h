@@ -60,7 +60,7 @@ class PBrdfModel final : public BrdfModel {
     std::vector<Lobe> lobes_;
     FresnelTerm fresnel_;
     double mean_x_ = 0, mean_y_ = 0; // sum W_i mu_i
-    double narrow_ = 0.05, wide_ = 0.3;
+    double narrow_ = 0, wide_ = 0;
     int theta_nodes_, phi_nodes_;
     std::vector<double> table_; // visible_area(v) / cos theta_v on the grid
 };
