@@ -3,8 +3,7 @@
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
 #include "gonio/io/result_writer.h"
-#include "gonio/material/interfaced_lambertian.h"
-#include "gonio/material/material.h"
+#include "gonio/material/facet_materials.h"
 #include "gonio/model/case_models.h"
 #include "gonio/trace/gonioreflectometer.h"
 #include "heightfield/surface_source.h"
@@ -15,24 +14,6 @@
 #include <memory>
 
 namespace gonio {
-
-namespace {
-// What the case's facets do, as the parts traced separately: one material, except a dispersive
-// dielectric, whose channels refract apart and are traced one by one.
-std::vector<std::unique_ptr<Material>> facet_materials(const CaseConfig& c) {
-    std::vector<std::unique_ptr<Material>> parts;
-    if (c.material_type == "lambertian")
-        parts.push_back(std::make_unique<LambertianFacet>(c.albedo));
-    else if (c.material_type == "interfaced_lambertian")
-        parts.push_back(std::make_unique<InterfacedLambertianFacet>(c.interface_eta, c.albedo));
-    else if (c.material_type == "dielectric")
-        for (int k = 0; k < c.fresnel.channels(); ++k)
-            parts.push_back(std::make_unique<DielectricFacet>(c.fresnel.dielectric_eta(k)));
-    else
-        parts.push_back(std::make_unique<SpecularReflector>(c.fresnel));
-    return parts;
-}
-} // namespace
 
 int run_run_command(const RunOptions& o) {
     const Config cfg = load_config(o.config, o.overrides); // throws ConfigError

@@ -1,7 +1,6 @@
 #include "gonio/model/case_models.h"
 
-#include "gonio/material/interfaced_lambertian.h"
-#include "gonio/material/material.h"
+#include "gonio/material/facet_materials.h"
 #include "gonio/model/ashikhmin_model.h"
 #include "gonio/model/cell_integrator.h"
 #include "gonio/model/interfaced_lambertian_model.h"
@@ -15,14 +14,6 @@
 namespace gonio {
 
 namespace {
-// The facets' material as the V-cavity paths meet it (opaque materials only).
-std::unique_ptr<Material> opaque_facet(const CaseConfig& c) {
-    if (c.material_type == "lambertian") return std::make_unique<LambertianFacet>(c.albedo);
-    if (c.material_type == "interfaced_lambertian")
-        return std::make_unique<InterfacedLambertianFacet>(c.interface_eta, c.albedo);
-    return std::make_unique<SpecularReflector>(c.fresnel);
-}
-
 std::vector<double> interface_eta(const CaseConfig& c) {
     return c.material_type == "lambertian" ? std::vector<double>{1.0} : c.interface_eta;
 }
@@ -62,7 +53,7 @@ CaseModels::CaseModels(const CaseConfig& c, const Ndf& ndf, const HeightField* s
                             "Beckmann lobe per texel of the surface, the whole patch as footprint";
         } else { // vcavity
             analytic_.push_back(nullptr);
-            facet_ = opaque_facet(c);
+            facet_ = std::move(facet_materials(c)[0]); // opaque: one part
             r.compared_with = "linf";
             r.description = "V-cavity multiple scattering, every order [M18 section 3.3]";
         }
