@@ -7,8 +7,12 @@
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/gaussian_angles.h"
 #include "heightfield/ndf/ggx.h"
+#include "heightfield/ndf/mixture_ndf.h"
+#include "heightfield/ndf/ndf_table.h"
+#include "heightfield/ndf/tabulated_ndf.h"
 
 #include <doctest/doctest.h>
+#include <memory>
 
 using namespace gonio;
 
@@ -110,5 +114,32 @@ TEST_CASE("IL model: reciprocal, and single scattering never creates energy (M18
             CHECK(albedo > 0.3);
             CHECK(albedo <= 1.0 + 1e-6);
         }
+    }
+}
+
+TEST_CASE(
+    "IL model body integral for NDFs whose sampler is not a continuous map (table, mixture)") {
+    const Beckmann beckmann(0.5, 0.5);
+    const TabulatedNdf table(sample_ndf_table(beckmann, 90, 72), "beckmann table");
+    std::vector<std::unique_ptr<Ndf>> parts;
+    parts.push_back(std::make_unique<Beckmann>(0.1, 0.1));
+    parts.push_back(std::make_unique<Ggx>(0.6, 0.6));
+    const MixtureNdf mixture(std::move(parts), {0.7, 0.3});
+    const InterfacedLambertianFacet facet({1.5}, {0.6});
+    for (const Ndf* ndf : std::vector<const Ndf*>{&table, &mixture}) {
+        CAPTURE(ndf->describe());
+        CHECK(!ndf->continuous_sampler());
+        const InterfacedLambertianModel model(*ndf, {1.5}, {0.6}, MaskingForm::height_correlated);
+        const Vec3 i = spherical_direction(radians(60.0), 0.0);
+        const Vec3 o = spherical_direction(radians(30.0), radians(150.0));
+        const double reference = hemisphere_integral(
+            [&](const Vec3& m) {
+                const double im = dot(i, m), om = dot(o, m);
+                if (im <= 0 || om <= 0) return 0.0;
+                return ndf->D(m) * ndf->G2(i, o, m, MaskingForm::height_correlated) * im * om /
+                       (i.z * o.z) * facet.body_brdf(i, o, m, 0);
+            },
+            0.1, &i, 1e-9);
+        CHECK(body(model, i, o) == doctest::Approx(reference).epsilon(2e-4));
     }
 }

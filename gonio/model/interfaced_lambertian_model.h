@@ -10,7 +10,8 @@
 // Lambertian-microfacet BRDF; as the roughness vanishes, the flat interfaced Lambertian surface.
 //
 // The integral over m is a tensor Gauss-Legendre rule in the NDF sampler's primary space
-// (m = sample_m(u1, u2), pdf D(m) m.n), so its nodes follow D however narrow it is.
+// (m = sample_m(u1, u2), pdf D(m) m.n), so its nodes follow D however narrow it is; for samplers
+// that are not continuous maps (tables, mixtures, blends) a composite rule in (theta, phi).
 #include "gonio/material/interfaced_lambertian.h"
 #include "gonio/model/microfacet_model.h"
 

@@ -23,6 +23,7 @@ class MixtureNdf final : public Ndf {
     double D(const Vec3& m) const override;
     double lambda(const Vec3& v) const override;
     Vec3 sample_m(double u1, double u2) const override;
+    bool continuous_sampler() const override { return false; } // picks a part or rejects
     Vec3 sample_visible(const Vec3& v, double u1, double u2) const override;
     std::string name() const override { return "mixture"; }
     std::string describe() const override;

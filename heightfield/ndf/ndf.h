@@ -36,6 +36,9 @@ class Ndf {
     // standard deviation): the analytic models refine their quadrature down to this scale.
     virtual double narrowest_feature() const = 0;
     virtual double widest_feature() const = 0;
+    // True when sample_m is a continuous map of (u1, u2) (an inverse CDF), so that quadrature rules
+    // may be laid in its primary space; false for samplers that pick a part or reject.
+    virtual bool continuous_sampler() const { return true; }
     // For shape-invariant distributions: true, with the roughness (alpha_x, alpha_y) that maps the
     // slopes to an isotropic unit-roughness distribution (p / alpha_x, q / alpha_y).
     virtual bool slope_stretch(double& alpha_x, double& alpha_y) const {
