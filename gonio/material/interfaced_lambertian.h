@@ -22,6 +22,7 @@ class InterfacedLambertianFacet final : public Material {
     // applies to every channel). Throws std::invalid_argument otherwise.
     InterfacedLambertianFacet(std::vector<double> eta, std::vector<double> albedo);
     int channels() const override { return int(eta_.size()); }
+    const std::vector<double>& eta() const { return eta_; } // n_i per channel
     bool scatter(const Vec3& wi, const Vec3& m, Rng& rng, Vec3& wo, double* weight) const override;
 
     // The body BRDF of a facet [M18 Eq. 9], for channel k (i and o above the facet).

@@ -134,13 +134,11 @@ double AshikhminModel::reflectance(const Vec3& k, int channel) const {
 
 void AshikhminModel::specular_cosine(const Vec3& i, const Vec3& o, double* out) const {
     const int nc = channels();
-    const Vec3 s = i + o;
-    const double len2 = dot(s, s);
-    if (i.z <= 0 || o.z <= 0 || len2 <= 0) {
+    Vec3 h;
+    if (!reflection_half_vector(i, o, h)) {
         for (int c = 0; c < nc; ++c) out[c] = 0.0;
         return;
     }
-    const Vec3 h = s / std::sqrt(len2);
     const double g1 = g(i), g2 = g(o);
     // A00 Eq. 11 with P(k) = (k.n) <h.n> / g(k) [Eq. 25]: the uncorrelated product gives
     // <h.n> / (4 g1 g2) [Eq. 26], the correlated min 1 / (4 max(g1 o.n, g2 i.n)) [Eq. 14].

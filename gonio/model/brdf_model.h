@@ -4,7 +4,19 @@
 // generated BRDF, Chermain's P-BRDF. Directions are unit vectors with n = +z.
 #include "core/math.h"
 
+#include <cmath>
+
 namespace gonio {
+
+// The half vector of reflection h = (i + o) / |i + o|; false when i or o is at or below the horizon
+// (the model is then 0).
+inline bool reflection_half_vector(const Vec3& i, const Vec3& o, Vec3& h) {
+    const Vec3 s = i + o;
+    const double len2 = dot(s, s);
+    if (i.z <= 0 || o.z <= 0 || len2 <= 0) return false;
+    h = s / std::sqrt(len2);
+    return true;
+}
 
 class BrdfModel {
   public:

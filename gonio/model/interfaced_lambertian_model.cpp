@@ -7,21 +7,11 @@
 
 namespace gonio {
 
-namespace {
-// One value per channel: a single value repeated.
-std::vector<double> per_channel(std::vector<double> v, size_t n) {
-    if (v.size() == 1) v.assign(n, v[0]);
-    return v;
-}
-} // namespace
-
 InterfacedLambertianModel::InterfacedLambertianModel(const Ndf& ndf, std::vector<double> eta,
                                                      std::vector<double> albedo,
                                                      MaskingForm masking, int body_points)
-    : ndf_(ndf), facet_(eta, albedo),
-      specular_(ndf, FresnelTerm::dielectric(per_channel(eta, std::max(eta.size(), albedo.size()))),
-                masking),
-      masking_(masking) {
+    : ndf_(ndf), facet_(std::move(eta), std::move(albedo)),
+      specular_(ndf, FresnelTerm::dielectric(facet_.eta()), masking), masking_(masking) {
     const GaussLegendre& rule = gauss_legendre(body_points);
     if (ndf.continuous_sampler()) {
         // Nodes in the sampler's primary space: m = sample_m(u1, u2) has pdf D(m) m.n, so the

@@ -4,13 +4,11 @@ namespace gonio {
 
 void MicrofacetModel::eval_cosine(const Vec3& i, const Vec3& o, double* out) const {
     const int nc = channels();
-    const Vec3 s = i + o;
-    const double len2 = dot(s, s);
-    if (i.z <= 0 || o.z <= 0 || len2 <= 0) {
+    Vec3 h;
+    if (!reflection_half_vector(i, o, h)) {
         for (int c = 0; c < nc; ++c) out[c] = 0.0;
         return;
     }
-    const Vec3 h = s / std::sqrt(len2);
     // R19 Eq. 2 times cos(theta_o): F D G2 / (4 |i.n|).
     const double geometric = ndf_.D(h) * ndf_.G2(i, o, h, masking_) / (4.0 * i.z);
     fresnel_.eval(dot(i, h), out);

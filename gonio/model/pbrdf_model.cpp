@@ -137,13 +137,11 @@ double PBrdfModel::visible_area_table(const Vec3& v) const {
 
 void PBrdfModel::eval_cosine(const Vec3& i, const Vec3& o, double* out) const {
     const int nc = channels();
-    const Vec3 s = i + o;
-    const double len2 = dot(s, s);
-    if (i.z <= 0 || o.z <= 0 || len2 <= 0) {
+    Vec3 h;
+    if (!reflection_half_vector(i, o, h)) {
         for (int c = 0; c < nc; ++c) out[c] = 0.0;
         return;
     }
-    const Vec3 h = s / std::sqrt(len2);
     // C19 Eq. 7 with G1(v) = A_P(v) / visible(v) [Eq. 11, 16]: the projected areas cancel.
     const double geometric = D(h) * o.z / (4 * visible_area_table(i) * visible_area_table(o));
     fresnel_.eval(dot(i, h), out);

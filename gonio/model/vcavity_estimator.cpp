@@ -1,11 +1,11 @@
 #include "gonio/model/vcavity_estimator.h"
 
+#include "core/ordered_blocks.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 namespace gonio {
 
@@ -116,14 +116,7 @@ TraceResult vcavity_estimate(const Ndf& ndf, const Material& material, const Bec
             led.absorbed[k] += o.absorbed[k], led.capped[k] += o.capped[k],
                 led.lost[k] += o.lost[k];
     };
-    // As in the simulator: parallel batches of blocks, merged in block order.
-    const long long batch = std::max(256, 16 * tbb::this_task_arena::max_concurrency());
-    std::vector<BlockOutput> out(size_t(std::min(blocks, batch)));
-    for (long long b0 = 0; b0 < blocks; b0 += batch) {
-        const long long b1 = std::min(blocks, b0 + batch);
-        tbb::parallel_for(b0, b1, [&](long long b) { trace_block(b, out[size_t(b - b0)]); });
-        for (long long b = b0; b < b1; ++b) merge_block(out[size_t(b - b0)]);
-    }
+    run_blocks_in_order<BlockOutput>(blocks, trace_block, merge_block);
     led.unaccounted.assign(nc, 1.0);
     for (int k = 0; k < nc; ++k) {
         for (int order = 0; order < orders; ++order)
