@@ -9,15 +9,24 @@ namespace gonio {
 int run_compare_command(const std::string& path) {
     const ResultSummary s = read_result_summary(path);
     // One row per incidence, channel and model: the model's albedo against the simulated
-    // quantity it models (L1 or every order), their relative difference and the per-cell relative
-    // L1 distance; then the simulation's own albedos.
-    std::printf("%-20s %7s %7s %3s %-10s %4s %10s %10s %10s %10s %10s %10s %10s %10s\n", "case",
-                "theta_i", "phi_i", "ch", "model", "vs", "model", "sim", "rel_diff", "distance",
-                "sim_L1", "sim_L2+", "sim_Linf", "sim_T");
+    // quantity it models (L1 or every order), their relative difference and how many standard
+    // errors it is, the per-cell relative L1 distance; then the simulation's own albedos. Every
+    // figure with its standard error.
+    std::printf("%-20s %7s %7s %3s %-10s %4s %18s %18s %18s %7s %18s %18s %18s %18s %10s\n", "case",
+                "theta_i", "phi_i", "ch", "model", "vs", "model", "sim", "rel_diff", "sigmas",
+                "distance", "sim_L1", "sim_L2+", "sim_Linf", "sim_T");
     for (const CaseSummary& c : s.cases) {
         auto get = [&](const std::string& name, size_t i) {
             auto it = c.albedos.find(name);
             return it == c.albedos.end() ? -1.0 : it->second[i];
+        };
+        // "value±error" (the error is left out when the file has none: an analytic model).
+        auto pm = [&](const std::string& name, size_t i, const char* format) {
+            char v[64], e[32] = "";
+            std::snprintf(v, sizeof v, format, get(name, i));
+            if (c.albedos.count(name + "_stderr"))
+                std::snprintf(e, sizeof e, "±%.1e", get(name + "_stderr", i));
+            std::printf(" %18s", (std::string(v) + e).c_str());
         };
         if (c.albedos.count("l1_albedo") == 0) continue; // a model-only case
         std::vector<std::string> models;
@@ -35,19 +44,21 @@ int run_compare_command(const std::string& path) {
                         std::printf("%-20s %7.2f %7.2f %3zu", c.name.c_str(), c.theta_i_deg[t],
                                     c.phi_i_deg[p], k);
                         if (m.empty()) {
-                            std::printf(" %-10s %4s %10s %10s %10s %10s", "-", "-", "-", "-", "-",
-                                        "-");
+                            std::printf(" %-10s %4s %18s %18s %18s %7s %18s", "-", "-", "-", "-",
+                                        "-", "-", "-");
                         } else {
                             const auto vs = c.attributes.find("model_" + m + "_compared_with");
                             const bool all = vs != c.attributes.end() && vs->second == "linf";
-                            std::printf(" %-10s %4s %10.6f %10.6f %+10.4f %10.4f", m.c_str(),
-                                        all ? "Linf" : "L1", get("model_" + m + "_albedo", i),
-                                        get(all ? "linf_albedo" : "l1_albedo", i),
-                                        get(m + "_relative_difference", i),
-                                        get(m + "_distance", i));
+                            std::printf(" %-10s %4s", m.c_str(), all ? "Linf" : "L1");
+                            pm("model_" + m + "_albedo", i, "%.6f");
+                            pm(all ? "linf_albedo" : "l1_albedo", i, "%.6f");
+                            pm(m + "_relative_difference", i, "%+.4f");
+                            std::printf(" %+7.1f", get(m + "_sigmas", i));
+                            pm(m + "_distance", i, "%.4f");
                         }
-                        std::printf(" %10.6f %10.6f %10.6f", get("l1_albedo", i),
-                                    get("l2plus_albedo", i), get("linf_albedo", i));
+                        pm("l1_albedo", i, "%.6f");
+                        pm("l2plus_albedo", i, "%.6f");
+                        pm("linf_albedo", i, "%.6f");
                         if (c.albedos.count("transmitted_albedo")) // dielectrics only
                             std::printf(" %10.6f\n", get("transmitted_albedo", i));
                         else

@@ -3,6 +3,7 @@
 #include "gonio/io/result_reader.h"
 
 #include <cstdio>
+#include <sstream>
 #include <string>
 
 namespace gonio {
@@ -12,6 +13,13 @@ namespace {
 std::string attribute(const std::map<std::string, std::string>& a, const std::string& k) {
     auto it = a.find(k);
     return it == a.end() ? "" : it->second;
+}
+
+std::vector<std::string> split(const std::string& list) {
+    std::vector<std::string> out;
+    std::stringstream in(list);
+    for (std::string item; std::getline(in, item, ',');) out.push_back(item);
+    return out;
 }
 
 void print_json(const ResultSummary& s) {
@@ -43,6 +51,11 @@ void print_json(const ResultSummary& s) {
                                           values.begin() + (t * np + p + 1) * nc);
                     out += ", " + json::quote(name) + ": " + json::array(v);
                 }
+                for (const auto& [name, values] : c.runs)
+                    out += ", " + json::quote(name) + ": " + json::number(values[t * np + p]);
+                const std::vector<std::string> stops = split(attribute(c.attributes, "stop"));
+                if (t * np + p < stops.size())
+                    out += ", \"stop\": " + json::quote(stops[t * np + p]);
                 out += "}";
             }
         }
@@ -72,17 +85,34 @@ void print_text(const ResultSummary& s) {
                 std::printf("%s%g nm", k ? ", " : "", c.wavelength_nm[k]);
             std::printf(")");
         }
+        // Each quantity with its standard error beside it, when the file has one.
+        auto is_error = [](const std::string& name) {
+            return name.size() > 7 && name.compare(name.size() - 7, 7, "_stderr") == 0;
+        };
+        const std::vector<std::string> stops = split(attribute(c.attributes, "stop"));
+        const auto rays = c.runs.find("rays");
         std::printf("\n  %8s %8s", "theta_i", "phi_i");
-        for (const auto& [name, v] : c.albedos) std::printf("  %s", name.c_str());
+        for (const auto& [name, v] : c.albedos)
+            if (!is_error(name)) std::printf("  %s", name.c_str());
+        if (rays != c.runs.end()) std::printf("  rays  stop");
         std::printf("\n");
         const size_t np = c.phi_i_deg.size(), nc = c.channels;
         for (size_t t = 0; t < c.theta_i_deg.size(); ++t)
             for (size_t p = 0; p < np; ++p) {
                 std::printf("  %8.3f %8.3f", c.theta_i_deg[t], c.phi_i_deg[p]);
                 for (const auto& [name, v] : c.albedos) {
+                    if (is_error(name)) continue;
+                    const auto err = c.albedos.find(name + "_stderr");
                     std::printf(" ");
-                    for (size_t k = 0; k < nc; ++k) std::printf(" %.6f", v[(t * np + p) * nc + k]);
+                    for (size_t k = 0; k < nc; ++k) {
+                        const size_t i = (t * np + p) * nc + k;
+                        std::printf(" %.6f", v[i]);
+                        if (err != c.albedos.end()) std::printf("±%.1e", err->second[i]);
+                    }
                 }
+                if (rays != c.runs.end())
+                    std::printf("  %.0f  %s", rays->second[t * np + p],
+                                t * np + p < stops.size() ? stops[t * np + p].c_str() : "-");
                 std::printf("\n");
             }
     }

@@ -27,8 +27,8 @@ int run_run_command(const RunOptions& o) {
     long long total = 0, done = 0;
     for (const auto& c : cfg.cases) total += c.theta_i_deg.size() * c.phi_i_deg.size();
     if (!o.quiet)
-        std::printf("%-20s %7s %7s %10s %10s %10s %10s %10s %9s\n", "case", "theta_i", "phi_i",
-                    "L1", "model", "rel_diff", "L2+", "T", "lost");
+        std::printf("%-20s %7s %7s %10s %8s %10s %10s %7s %10s %10s %9s\n", "case", "theta_i",
+                    "phi_i", "L1", "+-", "model", "rel_diff", "sigmas", "L2+", "T", "lost");
     for (size_t ci = 0; ci < cfg.cases.size(); ++ci) {
         const CaseConfig& c = cfg.cases[ci];
         const auto ndf = make_ndf(c.ndf);
@@ -64,51 +64,47 @@ int run_run_command(const RunOptions& o) {
                 st.rays = c.rays;
                 st.orders = c.orders;
                 st.max_bounces = c.max_bounces;
+                st.batches = c.batches;
+                st.target = c.target;
                 st.seed = cfg.seed;
                 st.stream =
                     (std::uint64_t(ci) << 40) ^ (std::uint64_t(ti) << 20) ^ std::uint64_t(pi);
                 const TraceResult r = trace_incidence(scene, parts, sensor, wi, st);
-                auto append = [](std::vector<double>& to, const std::vector<double>& v) {
-                    to.insert(to.end(), v.begin(), v.end());
-                };
-                append(sim.energy, r.energy);
-                append(sim.order_energy, r.ledger.reflected);
-                append(sim.transmitted, r.transmitted);
-                append(sim.transmitted_order_energy, r.ledger.transmitted);
-                append(sim.absorbed, r.ledger.absorbed);
-                append(sim.capped, r.ledger.capped);
-                append(sim.lost, r.ledger.lost);
-                append(sim.unaccounted, r.ledger.unaccounted);
-                sim.rays.push_back(double(r.rays));
-                sim.segments.push_back(double(r.segments));
-                sim.seconds.push_back(r.seconds);
                 // The models' V-cavity paths draw from their own streams (key "VCAVITY").
-                const auto model_albedos = models.evaluate(wi, sensor, cfg.seed, st.stream);
+                models.evaluate(wi, sensor, cfg.seed, st.stream);
+                std::vector<Comparison> comparisons;
+                for (size_t m = 0; m < c.models.size(); ++m)
+                    comparisons.push_back(compare_model(
+                        r, models.results()[m].compared_with == "linf", models.last(m)));
+                sim.append(r, comparisons);
                 ++done;
                 if (!o.quiet) {
                     progress.finish();
                     for (int k = 0; k < nc; ++k) {
-                        double l2plus = 0;
-                        for (int order = 1; order < sim.orders; ++order)
-                            l2plus += r.ledger.reflected[size_t(order) * nc + k];
-                        const double l1 = r.ledger.reflected[k];
-                        std::printf("%-20s %7.2f %7.2f %10.6f", c.name.c_str(), c.theta_i_deg[ti],
-                                    c.phi_i_deg[pi], l1);
-                        if (shown >= 0) {
-                            const double a = model_albedos[size_t(shown)][k];
-                            std::printf(" %10.6f %+10.4f", a, (l1 - a) / a);
-                        } else
-                            std::printf(" %10s %10s", "-", "-");
-                        std::printf(" %10.6f", l2plus);
-                        if (transmits) {
-                            double t = 0;
-                            for (int order = 0; order < sim.orders; ++order)
-                                t += r.ledger.transmitted[size_t(order) * nc + k];
-                            std::printf(" %10.6f", t);
-                        } else {
-                            std::printf(" %10s", "-");
+                        double l2plus = 0, t = 0;
+                        for (int order = 0; order < sim.orders; ++order) {
+                            if (order > 0) l2plus += r.ledger.reflected[size_t(order) * nc + k];
+                            if (transmits) t += r.ledger.transmitted[size_t(order) * nc + k];
                         }
-                        std::printf(" %9.2e\n", r.ledger.lost[k]);
+                        std::printf("%-20s %7.2f %7.2f %10.6f %8.1e", c.name.c_str(),
+                                    c.theta_i_deg[ti], c.phi_i_deg[pi], r.ledger.reflected[k],
+                                    r.ledger_stderr.reflected[k]);
+                        if (shown >= 0) {
+                            const Comparison& cmp = comparisons[size_t(shown)];
+                            std::printf(" %10.6f %+10.4f %+7.1f", cmp.model_albedo[k],
+                                        cmp.relative_difference[k], cmp.sigmas[k]);
+                        } else
+                            std::printf(" %10s %10s %7s", "-", "-", "-");
+                        std::printf(" %10.6f", l2plus);
+                        if (transmits)
+                            std::printf(" %10.6f", t);
+                        else
+                            std::printf(" %10s", "-");
+                        std::printf(" %9.2e", r.ledger.lost[k]);
+                        if (c.target.active())
+                            std::printf("  %s: %.2e with %lld rays", r.stop.c_str(),
+                                        r.achieved_error, r.rays);
+                        std::printf("\n");
                     }
                 }
             }

@@ -42,10 +42,13 @@ const std::map<std::string, std::vector<std::string>>& schema() {
         {"model",
          {"masking", "quadrature", "tolerance", "evaluate", "models", "body_points", "vcavity_rays",
           "ashikhmin", "pbrdf_sigma_eps"}},
-        {"trace", {"rays", "orders", "max_bounces"}},
+        {"trace",
+         {"rays", "orders", "max_bounces", "batches", "target_error", "target",
+          "target_cell_fraction", "max_rays", "max_seconds"}},
         {"surface",
          {"generator", "constraint", "size", "spacing", "iterations", "threshold",
-          "stop_when_converged", "lattice", "relief", "correlation_length", "input", "edges"}},
+          "stop_when_converged", "lattice", "relief", "correlation_length", "input", "edges",
+          "seed"}},
     };
     return s;
 }
@@ -198,8 +201,28 @@ class Loader {
         if (c.vcavity_rays == 0) c.vcavity_rays = c.rays;
         c.orders = static_cast<int>(trace.integer("orders", {1, 1000}, 10));
         c.max_bounces = static_cast<int>(trace.integer("max_bounces", {1, 1000000}, 1000));
+        c.batches = static_cast<int>(trace.integer("batches", {2, 1024}, 32));
+        load_target(c, trace);
         load_surface(c, reader(t, path, "surface"));
         return c;
+    }
+
+    // An accuracy target instead of a ray count (trace.rays is then one round).
+    void load_target(CaseConfig& c, TableReader& r) {
+        AccuracyTarget& t = c.target;
+        t.quantity = r.string("target", accuracy_target_quantities(), "l1_albedo");
+        t.cell_fraction = r.number("target_cell_fraction", {0, 1, true, false}, 0.1);
+        t.max_rays = r.integer("max_rays", {1, 1e13}, 10'000'000'000LL);
+        t.max_seconds = r.number("max_seconds", {0, 1e7, true, false}, 3600);
+        if (!r.has("target_error")) {
+            for (const char* k : {"target", "target_cell_fraction", "max_rays", "max_seconds"})
+                if (r.has(k)) r.fail(k, "applies only with trace.target_error");
+            return;
+        }
+        t.relative_error = r.number("target_error", {0, 1, true, false});
+        if (t.max_rays < c.rays)
+            r.fail("max_rays", "must be at least trace.rays (" + std::to_string(c.rays) +
+                                   "), the rays of one round");
     }
 
     // Which models the case evaluates, and their settings; each must suit the material.
@@ -243,7 +266,10 @@ class Loader {
 
     void load_surface(CaseConfig& c, TableReader r) {
         SurfaceSpec& s = c.surface;
-        s.seed = seed_;
+        // Its own seed keeps one surface while the rays' seed varies (their spread is then the
+        // Monte Carlo error alone).
+        s.seed = static_cast<std::uint64_t>(
+            r.integer("seed", {0, 9.2e18}, static_cast<long long>(seed_)));
         if (r.has("input")) {
             // A measured height map replaces generation: generation keys would be unused.
             s.input = r.any_string("input");

@@ -6,6 +6,7 @@
 #include "gonio/model/ashikhmin_model.h"
 #include "gonio/model/cell_integrator.h"
 #include "gonio/model/microfacet_model.h"
+#include "gonio/trace/accuracy_target.h"
 #include "heightfield/ndf/make_ndf.h"
 #include "heightfield/surface_spec.h"
 
@@ -44,6 +45,8 @@ struct CaseConfig {
     long long rays = 1 << 20; // per incidence
     int orders = 10;          // bounce orders stored separately (then one overflow order)
     int max_bounces = 1000;   // rays still bouncing then are cut (ledger: capped); 1 = L1 only
+    int batches = 32;         // independent batches of the beam, for the standard errors
+    AccuracyTarget target;    // target_error etc.: rounds of `rays` until met or out of budget
     // [model]: the models evaluated on the sensor cells, by name: "l1" (Model L1, the specular
     // microfacet BRDF), "il" (interfaced Lambertian, M18), "vcavity" (V-cavity multiple
     // scattering, M18), "ashikhmin" (A00), "pbrdf" (C19, fitted to the traced surface's slopes).

@@ -87,13 +87,15 @@ ResultSummary read_result_summary(const std::string& path) {
                 h5::Handle d(H5Dopen2(group, ds.c_str(), H5P_DEFAULT), H5Dclose, "open dataset");
                 h5::Handle space(H5Dget_space(d), H5Sclose, "dataspace");
                 const int rank = H5Sget_simple_extent_ndims(space);
-                if (rank != 3) continue;
-                dims.resize(3);
+                if (rank != 2 && rank != 3) continue;
+                dims.resize(size_t(rank));
                 H5Sget_simple_extent_dims(space, dims.data(), nullptr);
             }
-            if (dims[0] == c.theta_i_deg.size() && dims[1] == c.phi_i_deg.size() &&
-                dims[2] == hsize_t(c.channels))
+            if (dims[0] != c.theta_i_deg.size() || dims[1] != c.phi_i_deg.size()) continue;
+            if (dims.size() == 3 && dims[2] == hsize_t(c.channels))
                 c.albedos[ds] = h5::read_doubles(group, ds);
+            else if (dims.size() == 2)
+                c.runs[ds] = h5::read_doubles(group, ds);
         }
         s.cases.push_back(std::move(c));
     }

@@ -16,6 +16,8 @@ struct CaseSummary {
     int channels = 0;
     // dataset name -> values [theta_i][phi_i][channel]
     std::map<std::string, std::vector<double>> albedos;
+    // dataset name -> values [theta_i][phi_i]: rays, rounds, achieved_error, trace_seconds, ...
+    std::map<std::string, std::vector<double>> runs;
 };
 
 struct ResultSummary {

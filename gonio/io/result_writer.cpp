@@ -202,6 +202,12 @@ void ResultWriter::write_models(CaseGroup& g, const BeckersSensor& sensor,
         g.per_cell(m + "_energy", r.energy, "1",
                    r.description + ": fraction of the incident power");
         g.per_incidence(m + "_albedo", r.albedo, "1", r.description + ": directional albedo");
+        if (!r.energy_stderr.empty()) { // a Monte Carlo model
+            g.per_cell(m + "_stderr", brdf_of(r.energy_stderr), "1/sr",
+                       "standard error of " + m + " (batch means)");
+            g.per_incidence(m + "_albedo_stderr", r.albedo_stderr, "1",
+                            "standard error of " + m + "_albedo (batch means)");
+        }
         h5::write_string_attribute(g.group, m + "_compared_with", r.compared_with);
         h5::Handle t = h5::write_dataset(g.group, m + "_seconds", {g.nt, g.np}, {1, 1},
                                          r.seconds.data(), "s", "wall time of the evaluation");
@@ -239,122 +245,151 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
     h5::write_int_attribute(g.order, "overflow_order", static_cast<long long>(no));
 
     const size_t maps = nt * np;
+    auto brdf_of = [&](std::vector<double> v) {
+        for (size_t k = 0; k < v.size(); ++k)
+            v[k] /= sensor.cell(static_cast<int>((k / nc) % ncell)).projected_solid_angle;
+        return v;
+    };
     // One side of the sample (reflection on the upper sensor, transmission on the lower one): the
     // distribution per order (energy over the cell's projected solid angle, the same for a cell
-    // and its mirror image), the first order, the higher orders and all orders, and their albedos.
+    // and its mirror image), the first order, the higher orders and all orders, and their albedos,
+    // each with its standard error.
     struct SideNames {
         const char *dist, *energy, *first, *higher, *all, *a1, *a2, *a2plus, *aall, *what;
     };
-    auto write_side = [&](const SideNames& n, const std::vector<double>& energy,
-                          const std::vector<double>& order_energy) {
-        std::vector<double> dist(energy.size());
-        for (size_t k = 0; k < dist.size(); ++k)
-            dist[k] =
-                energy[k] / sensor.cell(static_cast<int>((k / nc) % ncell)).projected_solid_angle;
+    auto write_side = [&](const SideNames& n, const SimulatedSide& side) {
         const std::string what = n.what;
-        h5::Handle d = h5::write_dataset(g.group, n.dist, {nt, np, no, ncell, nc},
-                                         {1, 1, no, ncell, nc}, dist.data(), "1/sr",
-                                         "simulated " + what + " per bounce order, cell averages");
-        g.attach_incidence(d);
-        h5::check(H5DSattach_scale(d, g.order, 2), "attach order");
-        g.attach_cells(d, 3);
-        g.attach_channels(d, 4);
-        h5::Handle e = h5::write_dataset(
-            g.group, n.energy, {nt, np, no, nc}, {1, 1, no, nc}, order_energy.data(), "1",
-            "fraction of the incident power per bounce order (" + what + ")");
-        g.attach_incidence(e);
-        h5::check(H5DSattach_scale(e, g.order, 2), "attach order");
-        g.attach_channels(e, 3);
-        std::vector<double> first(maps * ncell * nc), all(maps * ncell * nc, 0.0),
-            higher(maps * ncell * nc);
-        std::vector<double> a1(maps * nc, 0.0), a2(maps * nc, 0.0), aall(maps * nc, 0.0),
-            a2plus(maps * nc, 0.0);
+        for (bool err : {false, true}) {
+            const std::string suffix = err ? "_stderr" : "";
+            const std::string about = err ? "standard error of the " : "";
+            const std::vector<double> dist = brdf_of(err ? side.energy_stderr : side.energy);
+            h5::Handle d = h5::write_dataset(
+                g.group, n.dist + suffix, {nt, np, no, ncell, nc}, {1, 1, no, ncell, nc},
+                dist.data(), "1/sr", about + "simulated " + what + " per bounce order, cells");
+            g.attach_incidence(d);
+            h5::check(H5DSattach_scale(d, g.order, 2), "attach order");
+            g.attach_cells(d, 3);
+            g.attach_channels(d, 4);
+            h5::Handle e = h5::write_dataset(
+                g.group, n.energy + suffix, {nt, np, no, nc}, {1, 1, no, nc},
+                (err ? side.order_energy_stderr : side.order_energy).data(), "1",
+                about + "fraction of the incident power per bounce order (" + what + ")");
+            g.attach_incidence(e);
+            h5::check(H5DSattach_scale(e, g.order, 2), "attach order");
+            g.attach_channels(e, 3);
+        }
+        const std::vector<double> dist = brdf_of(side.energy),
+                                  dist_err = brdf_of(side.energy_stderr);
+        std::vector<double> first(maps * ncell * nc), first_err(maps * ncell * nc),
+            all(maps * ncell * nc, 0.0), higher(maps * ncell * nc);
+        std::vector<double> a1(maps * nc), a2(maps * nc), aall(maps * nc, 0.0),
+            a2plus(maps * nc, 0.0), a1_err(maps * nc), a2_err(maps * nc);
         for (size_t m = 0; m < maps; ++m)
             for (size_t o = 0; o < no; ++o)
                 for (size_t c2 = 0; c2 < ncell * nc; ++c2) {
-                    const double f = dist[(m * no + o) * ncell * nc + c2];
-                    if (o == 0) first[m * ncell * nc + c2] = f;
-                    all[m * ncell * nc + c2] += f;
+                    const size_t i = (m * no + o) * ncell * nc + c2;
+                    if (o == 0) first[m * ncell * nc + c2] = dist[i];
+                    if (o == 0) first_err[m * ncell * nc + c2] = dist_err[i];
+                    all[m * ncell * nc + c2] += dist[i];
                 }
         for (size_t k = 0; k < first.size(); ++k) higher[k] = all[k] - first[k];
         for (size_t m = 0; m < maps; ++m)
             for (size_t o = 0; o < no; ++o)
                 for (size_t k = 0; k < nc; ++k) {
-                    const double v = order_energy[(m * no + o) * nc + k];
+                    const size_t i = (m * no + o) * nc + k;
+                    const double v = side.order_energy[i];
                     aall[m * nc + k] += v;
-                    if (o == 0) a1[m * nc + k] = v;
-                    if (o == 1) a2[m * nc + k] = v;
+                    if (o == 0)
+                        a1[m * nc + k] = v, a1_err[m * nc + k] = side.order_energy_stderr[i];
+                    if (o == 1)
+                        a2[m * nc + k] = v, a2_err[m * nc + k] = side.order_energy_stderr[i];
                     if (o >= 1) a2plus[m * nc + k] += v;
                 }
-        g.per_cell(n.first, first, "1/sr", "simulated single-bounce " + what);
-        g.per_cell(n.higher, higher, "1/sr", "simulated multiple-bounce " + what);
-        g.per_cell(n.all, all, "1/sr", "simulated " + what + ", all orders");
-        g.per_incidence(n.a1, a1, "1", "simulated single-bounce albedo (" + what + ")");
-        g.per_incidence(n.a2, a2, "1", "simulated second-order albedo (" + what + ")");
-        g.per_incidence(n.a2plus, a2plus, "1", "simulated multiple-bounce albedo (" + what + ")");
-        g.per_incidence(n.aall, aall, "1", "simulated albedo, all orders (" + what + ")");
-        return a1;
+        auto with_error = [&](auto write, const std::string& name, const std::vector<double>& v,
+                              const std::vector<double>& err, const char* units,
+                              const std::string& about) {
+            (g.*write)(name, v, units, about);
+            (g.*write)(name + "_stderr", err, units, "standard error of the " + about);
+        };
+        with_error(&CaseGroup::per_cell, n.first, first, first_err, "1/sr",
+                   "simulated single-bounce " + what);
+        with_error(&CaseGroup::per_cell, n.higher, higher, brdf_of(side.higher_stderr), "1/sr",
+                   "simulated multiple-bounce " + what);
+        with_error(&CaseGroup::per_cell, n.all, all, brdf_of(side.all_stderr), "1/sr",
+                   "simulated " + what + ", all orders");
+        with_error(&CaseGroup::per_incidence, n.a1, a1, a1_err, "1",
+                   "simulated single-bounce albedo (" + what + ")");
+        with_error(&CaseGroup::per_incidence, n.a2, a2, a2_err, "1",
+                   "simulated second-order albedo (" + what + ")");
+        with_error(&CaseGroup::per_incidence, n.a2plus, a2plus, side.higher_albedo_stderr, "1",
+                   "simulated multiple-bounce albedo (" + what + ")");
+        with_error(&CaseGroup::per_incidence, n.aall, aall, side.all_albedo_stderr, "1",
+                   "simulated albedo, all orders (" + what + ")");
     };
-    const std::vector<double> a1 =
-        write_side({"brdf", "energy", "brdf_l1", "brdf_l2plus", "brdf_linf", "l1_albedo",
-                    "l2_albedo", "l2plus_albedo", "linf_albedo", "BRDF"},
-                   sim.energy, sim.order_energy);
+    write_side({"brdf", "energy", "brdf_l1", "brdf_l2plus", "brdf_linf", "l1_albedo", "l2_albedo",
+                "l2plus_albedo", "linf_albedo", "BRDF"},
+               sim.reflected);
     if (!sim.transmitted.empty())
         write_side({"btdf", "transmitted_energy", "btdf_t1", "btdf_t2plus", "btdf_tinf",
                     "t1_albedo", "t2_albedo", "t2plus_albedo", "transmitted_albedo",
                     "BTDF, lower sensor (cell k mirrors upper cell k)"},
-                   sim.transmitted, sim.transmitted_order_energy);
+                   sim.transmitted);
     g.per_incidence("ledger_absorbed", sim.absorbed, "1", "absorbed by the facets");
     g.per_incidence("ledger_capped", sim.capped, "1", "cut by the bounce cap");
     g.per_incidence("ledger_lost", sim.lost, "1", "lost (crack or endless ray): should be 0");
+    g.per_incidence("ledger_absorbed_stderr", sim.absorbed_stderr, "1",
+                    "standard error of ledger_absorbed");
+    g.per_incidence("ledger_capped_stderr", sim.capped_stderr, "1",
+                    "standard error of ledger_capped");
+    g.per_incidence("ledger_lost_stderr", sim.lost_stderr, "1", "standard error of ledger_lost");
     g.per_incidence("ledger_unaccounted", sim.unaccounted, "1",
                     "1 - (reflected + transmitted + absorbed + capped + lost): zero to round-off");
-    for (auto [name, v, what] : {std::tuple<const char*, const std::vector<double>*, const char*>{
-                                     "rays", &sim.rays, "rays traced"},
-                                 {"segments", &sim.segments, "ray segments (rtcIntersect1 calls)"},
-                                 {"trace_seconds", &sim.seconds, "wall time of the tracing"}}) {
-        h5::Handle d = h5::write_dataset(g.group, name, {nt, np}, {1, 1}, v->data(),
-                                         std::string(name) == "trace_seconds" ? "s" : "", what);
+    for (auto [name, v, units, what] :
+         {std::tuple<const char*, const std::vector<double>*, const char*, const char*>{
+              "rays", &sim.rays, "", "rays traced"},
+          {"segments", &sim.segments, "", "ray segments (rtcIntersect1 calls)"},
+          {"trace_seconds", &sim.seconds, "s", "wall time of the tracing"},
+          {"rounds", &sim.rounds, "", "rounds of rays given to every batch"},
+          {"achieved_error", &sim.achieved_error, "1",
+           "the accuracy target's relative standard error when the run stopped (-1: no target)"}}) {
+        h5::Handle d = h5::write_dataset(g.group, name, {nt, np}, {1, 1}, v->data(), units, what);
         g.attach_incidence(d);
     }
+    h5::write_int_attribute(g.group, "batches", c.batches);
+    std::string stops;
+    for (const std::string& s : sim.stop) stops += (stops.empty() ? "" : ",") + s;
+    h5::write_string_attribute(g.group, "stop", stops);
+    if (c.target.active()) {
+        h5::write_string_attribute(g.group, "target_quantity", c.target.quantity);
+        h5::write_double_attribute(g.group, "target_relative_error", c.target.relative_error);
+        h5::write_double_attribute(g.group, "target_cell_fraction", c.target.cell_fraction);
+        h5::write_double_attribute(g.group, "target_max_rays", double(c.target.max_rays));
+        h5::write_double_attribute(g.group, "target_max_seconds", c.target.max_seconds);
+    }
     write_models(g, sensor, models);
-    // Each model against what it models (single scattering or every order): albedos, their
-    // relative difference, the per-cell relative L1 distance
-    // sum |f_sim - f_model| Omega / sum f_model Omega, and the ratio map (0 where the model is 0).
-    for (const ModelResult& model : models) {
-        const bool all_orders = model.compared_with == "linf";
-        std::vector<double> rel(maps * nc), dist(maps * nc), ratio(maps * ncell * nc, 0.0);
-        for (size_t m = 0; m < maps; ++m)
-            for (size_t k = 0; k < nc; ++k) {
-                double sim_albedo = 0;
-                for (size_t o = 0; o < (all_orders ? no : 1); ++o)
-                    sim_albedo += sim.order_energy[(m * no + o) * nc + k];
-                const double am = model.albedo[m * nc + k];
-                rel[m * nc + k] = am > 0 ? (sim_albedo - am) / am : 0.0;
-                double num = 0, den = 0;
-                for (size_t cell = 0; cell < ncell; ++cell) {
-                    const size_t i = (m * ncell + cell) * nc + k;
-                    double es = 0;
-                    for (size_t o = 0; o < (all_orders ? no : 1); ++o)
-                        es += sim.energy[((m * no + o) * ncell + cell) * nc + k];
-                    const double em = model.energy[i];
-                    num += std::abs(es - em);
-                    den += em;
-                    ratio[i] = em > 0 ? es / em : 0.0;
-                }
-                dist[m * nc + k] = den > 0 ? num / den : 0.0;
-            }
-        const std::string what = all_orders ? "every order" : "L1";
+    // Each model against what it models (single scattering or every order), with errors.
+    for (size_t mi = 0; mi < models.size(); ++mi) {
+        const ModelResult& model = models[mi];
+        const Comparison& cmp = sim.comparisons[mi];
+        const std::string what = model.compared_with == "linf" ? "every order" : "L1";
         const std::string n = model.name;
-        g.per_incidence(n + "_relative_difference", rel, "1",
+        g.per_incidence(n + "_relative_difference", cmp.relative_difference, "1",
                         "(simulated " + what + " albedo - model_" + n + " albedo) / model_" + n +
                             " albedo");
+        g.per_incidence(n + "_relative_difference_stderr", cmp.relative_difference_stderr, "1",
+                        "standard error of " + n + "_relative_difference");
+        g.per_incidence(n + "_sigmas", cmp.sigmas, "1",
+                        "(simulated " + what + " albedo - model_" + n +
+                            " albedo) in standard errors of the difference");
         g.per_incidence(
-            n + "_distance", dist, "1",
+            n + "_distance", cmp.distance, "1",
             "sum |f_sim - f_model| Omega_perp / sum f_model Omega_perp over the cells (" + what +
                 " against model_" + n + ")");
-        g.per_cell(n + "_ratio", ratio, "1",
+        g.per_incidence(n + "_distance_stderr", cmp.distance_stderr, "1",
+                        "standard error of " + n + "_distance (jackknife over the batches)");
+        g.per_cell(n + "_ratio", cmp.ratio, "1",
                    "simulated " + what + " / model_" + n + " per cell (0 where the model is 0)");
+        g.per_cell(n + "_ratio_stderr", cmp.ratio_stderr, "1", "standard error of " + n + "_ratio");
     }
 }
 

@@ -5,6 +5,7 @@
 // name and renamed when complete, so a failed run leaves nothing half-written.
 #include "gonio/config/config.h"
 #include "gonio/io/hdf5_handles.h"
+#include "gonio/io/simulation_result.h"
 #include "gonio/model/case_models.h"
 #include "sensor/beckers_sensor.h"
 
@@ -12,18 +13,6 @@
 #include <vector>
 
 namespace gonio {
-
-// The simulation of one case over its sweep (theta_i major, then phi_i).
-struct SimulationResult {
-    int orders = 0;                   // K + 1: orders 1..K, then "K+1 or more"
-    std::vector<double> energy;       // [theta_i][phi_i][order][cell][channel]
-    std::vector<double> order_energy; // [theta_i][phi_i][order][channel]
-    // The same on the lower sensor, for transmissive materials (empty otherwise).
-    std::vector<double> transmitted, transmitted_order_energy;
-    std::vector<double> absorbed, capped, lost, unaccounted; // [theta_i][phi_i][channel]
-    std::vector<double> rays, segments, seconds;             // [theta_i][phi_i]
-    std::string surface; // where the surface came from (cache path, input)
-};
 
 class ResultWriter {
   public:
@@ -39,7 +28,8 @@ class ResultWriter {
     // The simulated BRDF per order, L1 / L2+ / L-infinity (and the BTDF of a transmissive
     // material on the lower sensor), the ledger, and the models on the same cells, each with
     // its comparison against the simulated quantity it models (albedos, relative difference,
-    // per-cell relative L1 distance, ratio map).
+    // per-cell relative L1 distance, ratio map); every simulated figure with its standard error
+    // beside it (name_stderr).
     void write_simulation_case(const CaseConfig& c, const BeckersSensor& sensor,
                                const SimulationResult& sim, const std::vector<ModelResult>& models);
     // Closes the file and renames it to its final path.

@@ -1,5 +1,6 @@
 #include "gonio/model/case_models.h"
 
+#include "core/batch_means.h"
 #include "gonio/material/facet_materials.h"
 #include "gonio/model/ashikhmin_model.h"
 #include "gonio/model/cell_integrator.h"
@@ -59,6 +60,7 @@ CaseModels::CaseModels(const CaseConfig& c, const Ndf& ndf, const HeightField* s
         }
         results_.push_back(std::move(r));
     }
+    last_.resize(results_.size());
 }
 
 CaseModels::~CaseModels() = default;
@@ -74,8 +76,10 @@ std::vector<std::vector<double>> CaseModels::evaluate(const Vec3& wi, const Beck
         ModelResult& r = results_[k];
         const auto t0 = std::chrono::steady_clock::now();
         std::vector<double> energy;
+        ModelMap& last = last_[k];
         if (analytic_[k]) {
             energy = model_cell_energy(*analytic_[k], wi, sensor, c_.quadrature);
+            last.relative_tolerance = c_.quadrature.rel_tol;
         } else {
             TraceSettings st;
             st.rays = c_.vcavity_rays;
@@ -94,7 +98,20 @@ std::vector<std::vector<double>> CaseModels::evaluate(const Vec3& wi, const Beck
             for (size_t e = size_t(nc); e < v.ledger.reflected.size(); ++e)
                 higher[e % size_t(nc)] += v.ledger.reflected[e];
             append(r.l2plus_albedo, higher);
+            last.batches = v.batches;
+            last.energy_batches = simulated_batches(v, true);
+            append(r.energy_stderr, batch_stderr(last.energy_batches, v.batches));
+            std::vector<double> albedo_err(static_cast<size_t>(nc));
+            for (size_t ch = 0; ch < size_t(nc); ++ch)
+                albedo_err[ch] = batch_stderr(v.batches, [&](int b) {
+                    double a = 0;
+                    for (size_t i = ch; i < per_order; i += size_t(nc))
+                        a += last.energy_batches[size_t(b) * per_order + i];
+                    return a;
+                });
+            append(r.albedo_stderr, albedo_err);
         }
+        last.energy = energy;
         const std::vector<double> albedo = albedo_from_cells(energy, nc);
         append(r.energy, energy);
         append(r.albedo, albedo);

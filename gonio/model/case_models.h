@@ -4,6 +4,7 @@
 // against: single scattering (L1) or every order (L-infinity).
 #include "gonio/config/config.h"
 #include "gonio/model/brdf_model.h"
+#include "gonio/model/model_comparison.h"
 #include "heightfield/heightfield.h"
 #include "heightfield/ndf/ndf.h"
 #include "sensor/beckers_sensor.h"
@@ -23,9 +24,10 @@ struct ModelResult {
     std::vector<double> energy;  // [theta_i][phi_i][cell][channel]: fraction of incident power
     std::vector<double> albedo;  // [theta_i][phi_i][channel]
     std::vector<double> seconds; // [theta_i][phi_i]
-    // V-cavity only: its single-scattering part and albedos per order.
+    // V-cavity only: its single-scattering part and albedos per order, and the standard errors.
     std::vector<double> first_energy;                        // [theta_i][phi_i][cell][channel]
     std::vector<double> l1_albedo, l2_albedo, l2plus_albedo; // [theta_i][phi_i][channel]
+    std::vector<double> energy_stderr, albedo_stderr;
 };
 
 class CaseModels {
@@ -39,6 +41,8 @@ class CaseModels {
     std::vector<std::vector<double>> evaluate(const Vec3& wi, const BeckersSensor& sensor,
                                               std::uint64_t seed, std::uint64_t stream);
     const std::vector<ModelResult>& results() const { return results_; }
+    // Model k at the incidence last evaluated, for compare_model().
+    const ModelMap& last(size_t k) const { return last_[k]; }
 
   private:
     const CaseConfig& c_;
@@ -46,6 +50,7 @@ class CaseModels {
     std::vector<std::unique_ptr<BrdfModel>> analytic_; // per model; null for the V-cavity
     std::unique_ptr<class Material> facet_;            // the V-cavity's facets
     std::vector<ModelResult> results_;
+    std::vector<ModelMap> last_;
 };
 
 } // namespace gonio

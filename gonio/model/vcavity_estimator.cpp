@@ -1,21 +1,14 @@
 #include "gonio/model/vcavity_estimator.h"
 
-#include "core/ordered_blocks.h"
+#include "gonio/trace/batched_run.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 namespace gonio {
 
 namespace {
-
-struct BlockOutput {
-    std::vector<int> bin; // order * cells + cell
-    std::vector<double> weight;
-    std::vector<double> absorbed, capped, lost;
-};
 
 // One V-groove in its cross-section: x along the azimuth a of m, z along n; facet A (normal m)
 // spans x in [-1, 0], facet B (normal m') x in [0, 1], both meeting at depth tan(theta_m).
@@ -49,25 +42,21 @@ TraceResult vcavity_estimate(const Ndf& ndf, const Material& material, const Bec
                              const Vec3& wi, const TraceSettings& st) {
     if (material.transmits())
         throw std::invalid_argument("the V-cavity estimator needs an opaque facet material");
-    const auto start = std::chrono::steady_clock::now();
     const int nc = material.channels(), cells = sensor.cell_count(), orders = st.orders + 1;
-    const long long paths = std::max(1LL, st.rays);
-    const long long blocks = (paths + st.block - 1) / st.block;
-    const double power = 1.0 / double(paths);
+    const long long B = std::max(1, st.batches);
+    const long long per_batch = (std::max(1LL, st.rays) + B - 1) / B;
 
-    auto trace_block = [&](long long b, BlockOutput& o) {
-        o.bin.clear(), o.weight.clear();
-        o.absorbed.assign(nc, 0.0), o.capped.assign(nc, 0.0), o.lost.assign(nc, 0.0);
-        Rng rng{st.seed, st.stream, 0x5643415649545955ull /* "VCAVITY" */, std::uint64_t(b)};
+    auto trace_block = [&](long long id, long long first, long long last, BlockOutput& o) {
+        o.clear(nc);
+        Rng rng{st.seed, st.stream, 0x5643415649545955ull /* "VCAVITY" */, std::uint64_t(id)};
         std::vector<double> w(nc), before(nc);
-        const long long first = b * st.block, last = std::min(paths, first + st.block);
         for (long long p = first; p < last; ++p) {
             const double u1 = rng.uniform(), u2 = rng.uniform();
             const Groove g(ndf.sample_m(u1, u2));    // M18 section 3.3: m with pdf D(m) m.n
             double x = 2 * rng.uniform() - 1, z = 0; // uniform over the opening
             Vec3 d = -wi;
-            std::fill(w.begin(), w.end(), power);
-            int bounces = 0, on = -1; // the facet the path is on (-1: the opening)
+            std::fill(w.begin(), w.end(), 1.0); // divided by the batch's paths when finished
+            int bounces = 0, on = -1;           // the facet the path is on (-1: the opening)
             for (;;) {
                 const double t0 = on == 0 ? INFINITY : g.hit(0, x, z, d);
                 const double t1 = on == 1 ? INFINITY : g.hit(1, x, z, d);
@@ -98,34 +87,8 @@ TraceResult vcavity_estimate(const Ndf& ndf, const Material& material, const Bec
         }
     };
 
-    TraceResult res;
-    res.orders = orders, res.cells = cells, res.channels = nc, res.rays = paths;
-    res.energy.assign(size_t(orders) * cells * nc, 0.0);
-    EnergyLedger& led = res.ledger;
-    led.reflected.assign(size_t(orders) * nc, 0.0);
-    led.absorbed.assign(nc, 0.0), led.capped.assign(nc, 0.0), led.lost.assign(nc, 0.0);
-    auto merge_block = [&](const BlockOutput& o) {
-        for (size_t e = 0; e < o.bin.size(); ++e) {
-            const int order = o.bin[e] / cells;
-            for (int k = 0; k < nc; ++k) {
-                res.energy[size_t(o.bin[e]) * nc + k] += o.weight[e * nc + k];
-                led.reflected[size_t(order) * nc + k] += o.weight[e * nc + k];
-            }
-        }
-        for (int k = 0; k < nc; ++k)
-            led.absorbed[k] += o.absorbed[k], led.capped[k] += o.capped[k],
-                led.lost[k] += o.lost[k];
-    };
-    run_blocks_in_order<BlockOutput>(blocks, trace_block, merge_block);
-    led.unaccounted.assign(nc, 1.0);
-    for (int k = 0; k < nc; ++k) {
-        for (int order = 0; order < orders; ++order)
-            led.unaccounted[k] -= led.reflected[size_t(order) * nc + k];
-        led.unaccounted[k] -= led.absorbed[k] + led.capped[k] + led.lost[k];
-    }
-    res.segments = 0;
-    res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return res;
+    BatchTally tally(int(B), orders, cells, nc, false);
+    return run_batched(st, per_batch, tally, sensor, trace_block);
 }
 
 } // namespace gonio

@@ -18,9 +18,9 @@
 
 namespace gonio {
 
-// settings.rays paths (not rounded), in blocks of settings.block with their own random streams,
-// merged in block order: the result does not depend on the thread count. Throws
-// std::invalid_argument for a transmissive material.
+// settings.rays paths (rounded up to a multiple of settings.batches), in batches and blocks with
+// their own random streams, merged in block order (gonio/trace/batched_run.h): the result does not
+// depend on the thread count. Throws std::invalid_argument for a transmissive material.
 TraceResult vcavity_estimate(const Ndf& ndf, const Material& material, const BeckersSensor& sensor,
                              const Vec3& wi, const TraceSettings& settings);
 

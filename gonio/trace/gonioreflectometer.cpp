@@ -1,48 +1,30 @@
 #include "gonio/trace/gonioreflectometer.h"
 
-#include "core/ordered_blocks.h"
+#include "gonio/trace/batched_run.h"
 
-#include <chrono>
 #include <cmath>
 
 namespace gonio {
 
-namespace {
-
-// What one block of rays produced: its exits, in ray order, and its ledger sums. Blocks are
-// merged in block order, so the sums do not depend on which thread ran which block.
-struct BlockOutput {
-    std::vector<int> bin;       // order * cells + cell, + orders * cells when transmitted
-    std::vector<Vec3> exit;     // exit directions, binned once the block is traced
-    std::vector<double> weight; // channels per exit
-    std::vector<double> absorbed, capped, lost;
-    long long segments = 0;
-};
-
-} // namespace
-
 TraceResult trace_incidence(const Scene& scene, const Material& material,
                             const BeckersSensor& sensor, const Vec3& wi, const TraceSettings& st) {
-    const auto start = std::chrono::steady_clock::now();
     const int nc = material.channels(), cells = sensor.cell_count();
     const int orders = st.orders + 1;
-    const long long side = (long long)std::ceil(std::sqrt(double(std::max(1LL, st.rays))));
-    const long long rays = side * side;
-    const long long blocks = (rays + st.block - 1) / st.block;
-    const double power = 1.0 / double(rays);
+    const long long B = std::max(1, st.batches);
+    // Every batch is a beam of its own, stratified on an S x S grid over the patch.
+    const long long wanted = (std::max(1LL, st.rays) + B - 1) / B;
+    const long long side = (long long)std::ceil(std::sqrt(double(wanted)));
     const double L = scene.period(), eps = scene.epsilon();
     const Vec3 down = -wi;
     const bool transmits = material.transmits();
 
-    auto trace_block = [&](long long b, BlockOutput& o) {
-        o.bin.clear(), o.exit.clear(), o.weight.clear();
+    auto trace_block = [&](long long id, long long first, long long last, BlockOutput& o) {
+        o.clear(nc);
         long long segments = 0; // counted locally: neighbouring blocks may share a cache line
-        o.absorbed.assign(nc, 0.0), o.capped.assign(nc, 0.0), o.lost.assign(nc, 0.0);
-        Rng rng{st.seed, st.stream, std::uint64_t(b)};
+        Rng rng{st.seed, st.stream, std::uint64_t(id)};
         std::vector<double> w(nc), before(nc);
-        const long long first = b * st.block, last = std::min(rays, first + st.block);
-        // Stratified beam: one ray per cell of an S x S grid over the patch, ray r in cell
-        // (r mod S, r div S); the cell is stepped rather than divided out per ray.
+        // Ray r of the batch's beam lies in grid cell (r mod S, r div S); the cell is stepped
+        // rather than divided out per ray.
         long long cx = first % side, cy = first / side;
         const double cell = L / double(side);
         for (long long r = first; r < last; ++r) {
@@ -50,7 +32,7 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
             const double y = (double(cy) + rng.uniform()) * cell;
             Vec3 origin{x, y, scene.z_max() + eps};
             Vec3 dir = down;
-            std::fill(w.begin(), w.end(), power);
+            std::fill(w.begin(), w.end(), 1.0); // divided by the batch's rays when finished
             int bounces = 0;
             bool below = false; // travelling under the surface (transmissive materials only)
             // The ray's remaining power ends in a ledger entry.
@@ -105,41 +87,8 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
                                                              : sensor.lookup_lower(o.exit[e]));
     };
 
-    TraceResult res;
-    res.orders = orders, res.cells = cells, res.channels = nc, res.rays = rays;
-    res.energy.assign(size_t(orders) * cells * nc, 0.0);
-    if (transmits) res.transmitted.assign(size_t(orders) * cells * nc, 0.0);
-    EnergyLedger& led = res.ledger;
-    led.reflected.assign(size_t(orders) * nc, 0.0);
-    if (transmits) led.transmitted.assign(size_t(orders) * nc, 0.0);
-    led.absorbed.assign(nc, 0.0), led.capped.assign(nc, 0.0), led.lost.assign(nc, 0.0);
-    auto merge_block = [&](const BlockOutput& o) {
-        for (size_t e = 0; e < o.bin.size(); ++e) {
-            const bool up = o.bin[e] < orders * cells;
-            const int bin = up ? o.bin[e] : o.bin[e] - orders * cells, order = bin / cells;
-            double* energy = (up ? res.energy : res.transmitted).data();
-            double* sum = (up ? led.reflected : led.transmitted).data();
-            for (int k = 0; k < nc; ++k) {
-                energy[size_t(bin) * nc + k] += o.weight[e * nc + k];
-                sum[size_t(order) * nc + k] += o.weight[e * nc + k];
-            }
-        }
-        for (int k = 0; k < nc; ++k)
-            led.absorbed[k] += o.absorbed[k], led.capped[k] += o.capped[k],
-                led.lost[k] += o.lost[k];
-        res.segments += o.segments;
-    };
-    run_blocks_in_order<BlockOutput>(blocks, trace_block, merge_block);
-    led.unaccounted.assign(nc, 1.0);
-    for (int k = 0; k < nc; ++k) {
-        for (int order = 0; order < orders; ++order) {
-            led.unaccounted[k] -= led.reflected[size_t(order) * nc + k];
-            if (transmits) led.unaccounted[k] -= led.transmitted[size_t(order) * nc + k];
-        }
-        led.unaccounted[k] -= led.absorbed[k] + led.capped[k] + led.lost[k];
-    }
-    res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return res;
+    BatchTally tally(int(B), orders, cells, nc, transmits);
+    return run_batched(st, side * side, tally, sensor, trace_block);
 }
 
 TraceResult trace_incidence(const Scene& scene, const std::vector<const Material*>& parts,
@@ -152,9 +101,12 @@ TraceResult trace_incidence(const Scene& scene, const std::vector<const Material
         r.push_back(trace_incidence(scene, *parts[p], sensor, wi, part));
     }
     TraceResult res;
-    res.orders = r[0].orders, res.cells = r[0].cells, res.rays = r[0].rays;
+    res.orders = r[0].orders, res.cells = r[0].cells, res.batches = r[0].batches;
+    // Rays, rounds and error: those of the part that needed the most (a target is met by each).
     for (const TraceResult& p : r) {
         res.channels += p.channels, res.segments += p.segments, res.seconds += p.seconds;
+        if (p.rays >= res.rays) res.rays = p.rays, res.rounds = p.rounds, res.stop = p.stop;
+        res.achieved_error = std::max(res.achieved_error, p.achieved_error);
     }
     // [outer][channel] arrays: concatenate the parts' channels within every outer index.
     auto concat = [&](auto get) {
@@ -168,13 +120,18 @@ TraceResult trace_incidence(const Scene& scene, const std::vector<const Material
             }
         return out;
     };
-    res.energy = concat([](const TraceResult& p) -> const auto& { return p.energy; });
-    res.transmitted = concat([](const TraceResult& p) -> const auto& { return p.transmitted; });
-    for (auto entry :
-         {&EnergyLedger::reflected, &EnergyLedger::transmitted, &EnergyLedger::absorbed,
-          &EnergyLedger::capped, &EnergyLedger::lost, &EnergyLedger::unaccounted})
-        res.ledger.*entry =
-            concat([entry](const TraceResult& p) -> const auto& { return p.ledger.*entry; });
+    for (auto map : {&TraceResult::energy, &TraceResult::transmitted, &TraceResult::energy_stderr,
+                     &TraceResult::transmitted_stderr, &TraceResult::energy_batches,
+                     &TraceResult::transmitted_batches})
+        res.*map = concat([map](const TraceResult& p) -> const auto& { return p.*map; });
+    for (auto ledger :
+         {&TraceResult::ledger, &TraceResult::ledger_stderr, &TraceResult::ledger_batches})
+        for (auto entry :
+             {&EnergyLedger::reflected, &EnergyLedger::transmitted, &EnergyLedger::absorbed,
+              &EnergyLedger::capped, &EnergyLedger::lost, &EnergyLedger::unaccounted})
+            (res.*ledger).*entry = concat([ ledger, entry ](const TraceResult& p) -> const auto& {
+                return (p.*ledger).*entry;
+            });
     return res;
 }
 

@@ -1,0 +1,63 @@
+#pragma once
+// Standard errors by batch means: an estimate that is the mean of B independent, identically
+// distributed batch estimates x_b has the standard error sqrt(sum_b (x_b - mean)^2 / (B (B-1))),
+// an unbiased variance estimate whatever the distribution of one ray's contribution. A statistic
+// that is not linear in the batches (a distance between maps, a ratio) gets the delete-one
+// jackknife's standard error (Efron & Stein 1981) instead.
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace gonio {
+
+// Batches stored [batch][n]: the n means.
+inline std::vector<double> batch_mean(const std::vector<double>& batches, int B) {
+    const size_t n = batches.size() / size_t(B);
+    std::vector<double> mean(n, 0.0);
+    for (int b = 0; b < B; ++b)
+        for (size_t i = 0; i < n; ++i) mean[i] += batches[size_t(b) * n + i];
+    for (double& m : mean) m /= B;
+    return mean;
+}
+
+// The standard error of the mean of value(b), b = 0..B-1 (0 for one batch: nothing to say).
+template <class Value>
+double batch_stderr(int B, const Value& value) {
+    if (B < 2) return 0.0;
+    double mean = 0;
+    for (int b = 0; b < B; ++b) mean += value(b);
+    mean /= B;
+    double ss = 0;
+    for (int b = 0; b < B; ++b) ss += (value(b) - mean) * (value(b) - mean);
+    return std::sqrt(ss / (double(B) * double(B - 1)));
+}
+
+// Element-wise standard errors of batches stored [batch][n].
+inline std::vector<double> batch_stderr(const std::vector<double>& batches, int B) {
+    const size_t n = batches.size() / size_t(B);
+    std::vector<double> err(n);
+    for (size_t i = 0; i < n; ++i)
+        err[i] = batch_stderr(B, [&](int b) { return batches[size_t(b) * n + i]; });
+    return err;
+}
+
+// The jackknife standard error of a statistic: without(b) is the statistic computed from every
+// batch but b.
+template <class Without>
+double jackknife_stderr(int B, const Without& without) {
+    if (B < 2) return 0.0;
+    std::vector<double> t(size_t(B), 0.0);
+    double mean = 0;
+    for (int b = 0; b < B; ++b) mean += (t[size_t(b)] = without(b));
+    mean /= B;
+    double ss = 0;
+    for (double v : t) ss += (v - mean) * (v - mean);
+    return std::sqrt(ss * double(B - 1) / double(B));
+}
+
+// The mean of every batch but `without`, from the mean of all and that batch's value.
+inline double mean_without(double mean, double batch, int B) {
+    return (double(B) * mean - batch) / double(B - 1);
+}
+
+} // namespace gonio

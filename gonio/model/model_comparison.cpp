@@ -1,0 +1,91 @@
+#include "gonio/model/model_comparison.h"
+
+#include "core/batch_means.h"
+
+#include <cmath>
+
+namespace gonio {
+
+std::vector<double> simulated_batches(const TraceResult& sim, bool all_orders) {
+    const size_t map = size_t(sim.cells) * sim.channels, B = size_t(sim.batches);
+    const size_t orders = all_orders ? size_t(sim.orders) : 1;
+    std::vector<double> out(B * map, 0.0);
+    for (size_t b = 0; b < B; ++b)
+        for (size_t o = 0; o < orders; ++o)
+            for (size_t i = 0; i < map; ++i)
+                out[b * map + i] += sim.energy_batches[(b * sim.orders + o) * map + i];
+    return out;
+}
+
+Comparison compare_model(const TraceResult& sim, bool all_orders, const ModelMap& model) {
+    const size_t nc = size_t(sim.channels), cells = size_t(sim.cells), map = cells * nc;
+    const int B = sim.batches, MB = model.batches;
+    const std::vector<double> s_batches = simulated_batches(sim, all_orders);
+    const std::vector<double> s = batch_mean(s_batches, B), s_err = batch_stderr(s_batches, B);
+    const std::vector<double> m_err =
+        MB > 1 ? batch_stderr(model.energy_batches, MB) : std::vector<double>(map, 0.0);
+    const std::vector<double>& m = model.energy;
+    Comparison c;
+    for (auto* v : {&c.sim_albedo, &c.sim_albedo_stderr, &c.model_albedo, &c.model_albedo_stderr,
+                    &c.relative_difference, &c.relative_difference_stderr, &c.sigmas, &c.distance,
+                    &c.distance_stderr})
+        v->assign(nc, 0.0);
+    c.ratio.assign(map, 0.0), c.ratio_stderr.assign(map, 0.0);
+    auto sum_cells = [&](const double* v, size_t k) {
+        double a = 0;
+        for (size_t cell = 0; cell < cells; ++cell) a += v[cell * nc + k];
+        return a;
+    };
+    // The distance of a simulated map to a model map, channel k.
+    auto distance = [&](const std::vector<double>& fs, const std::vector<double>& fm, size_t k) {
+        double num = 0, den = 0;
+        for (size_t cell = 0; cell < cells; ++cell) {
+            num += std::abs(fs[cell * nc + k] - fm[cell * nc + k]);
+            den += fm[cell * nc + k];
+        }
+        return den > 0 ? num / den : 0.0;
+    };
+    for (size_t k = 0; k < nc; ++k) {
+        const double a_s = sum_cells(s.data(), k), a_m = sum_cells(m.data(), k);
+        const double e_s =
+            batch_stderr(B, [&](int b) { return sum_cells(&s_batches[b * map], k); });
+        const double e_m =
+            MB > 1 ? batch_stderr(
+                         MB, [&](int b) { return sum_cells(&model.energy_batches[b * map], k); })
+                   : model.relative_tolerance * a_m;
+        c.sim_albedo[k] = a_s, c.sim_albedo_stderr[k] = e_s;
+        c.model_albedo[k] = a_m, c.model_albedo_stderr[k] = e_m;
+        if (a_m > 0) {
+            c.relative_difference[k] = (a_s - a_m) / a_m;
+            c.relative_difference_stderr[k] =
+                std::hypot(e_s / a_m, a_s * e_m / (a_m * a_m)); // delta method
+        }
+        const double e = std::hypot(e_s, e_m);
+        c.sigmas[k] = e > 0 ? (a_s - a_m) / e : 0.0;
+        c.distance[k] = distance(s, m, k);
+        // Jackknife over the simulation's batches, then over the model's: independent, so the
+        // variances add.
+        std::vector<double> without(map);
+        const double j_s = jackknife_stderr(B, [&](int b) {
+            for (size_t i = 0; i < map; ++i)
+                without[i] = mean_without(s[i], s_batches[b * map + i], B);
+            return distance(without, m, k);
+        });
+        const double j_m = jackknife_stderr(MB, [&](int b) {
+            for (size_t i = 0; i < map; ++i)
+                without[i] = mean_without(m[i], model.energy_batches[b * map + i], MB);
+            return distance(s, without, k);
+        });
+        c.distance_stderr[k] = std::hypot(j_s, j_m);
+        for (size_t cell = 0; cell < cells; ++cell) {
+            const size_t i = cell * nc + k;
+            if (m[i] <= 0) continue;
+            const double me = MB > 1 ? m_err[i] : model.relative_tolerance * m[i];
+            c.ratio[i] = s[i] / m[i];
+            c.ratio_stderr[i] = std::hypot(s_err[i] / m[i], s[i] * me / (m[i] * m[i]));
+        }
+    }
+    return c;
+}
+
+} // namespace gonio

@@ -1,0 +1,37 @@
+#pragma once
+// A model against the simulated quantity it models (L1 or every order), at one incidence, with the
+// standard error of every figure: the simulation's from its batches, the model's from its own
+// batches when it is a Monte Carlo estimate (the V-cavity) or else its quadrature tolerance, taken
+// as an error bound. The two are independent, so their variances add.
+#include "gonio/trace/trace_result.h"
+
+#include <vector>
+
+namespace gonio {
+
+// A model's cell energies at one incidence, [cell][channel], and, for a Monte Carlo model, the
+// batches whose mean they are, [batch][cell][channel].
+struct ModelMap {
+    std::vector<double> energy;
+    double relative_tolerance = 0; // analytic models: the quadrature's relative tolerance
+    int batches = 0;
+    std::vector<double> energy_batches;
+};
+
+// Per channel, except the maps (per cell and channel).
+struct Comparison {
+    std::vector<double> sim_albedo, sim_albedo_stderr, model_albedo, model_albedo_stderr;
+    // (sim - model) / model, and the difference over its standard error (how many sigmas).
+    std::vector<double> relative_difference, relative_difference_stderr, sigmas;
+    // sum |f_sim - f_model| Omega_perp / sum f_model Omega_perp (jackknife standard error).
+    std::vector<double> distance, distance_stderr;
+    std::vector<double> ratio, ratio_stderr; // sim / model per cell (0 where the model is 0)
+};
+
+// all_orders: against every order (L-infinity) instead of single scattering.
+Comparison compare_model(const TraceResult& sim, bool all_orders, const ModelMap& model);
+
+// The simulated energies [cell][channel] of order 1 (or every order), per batch: [batch][...].
+std::vector<double> simulated_batches(const TraceResult& sim, bool all_orders);
+
+} // namespace gonio

@@ -1,0 +1,49 @@
+#pragma once
+// What a Monte Carlo beam (the simulator, the V-cavity estimator) reports: the exits per order and
+// sensor cell, the energy ledger, each as the mean of B independent batches with its standard
+// error, and the batches themselves for the errors of derived quantities (core/batch_means.h).
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+// Fractions of the incident power, per channel.
+struct EnergyLedger {
+    std::vector<double> reflected;   // [order][channel]: orders 1..K, then the overflow order
+    std::vector<double> transmitted; // [order][channel]: transmissive materials only, else empty
+    std::vector<double> absorbed;    // [channel]
+    std::vector<double> capped;      // [channel]: still bouncing at max_bounces
+    std::vector<double> lost;        // [channel]: crossed an opaque surface, or wrapped without
+                                     // end (a crack or a numerical failure)
+    // 1 - everything above, per channel: zero up to round-off when nothing is lost.
+    std::vector<double> unaccounted;
+};
+
+struct TraceResult {
+    int orders = 0; // K + 1 (the last is the overflow order)
+    int cells = 0, channels = 0;
+    long long rays = 0;
+    long long segments = 0;     // rtcIntersect1 calls
+    std::vector<double> energy; // [order][cell][channel]: fraction of the incident power
+    // The same on the lower sensor, for transmissive materials (empty otherwise). The order of a
+    // transmitted ray is its number of scattering events, refractions included.
+    std::vector<double> transmitted;
+    EnergyLedger ledger;
+    double seconds = 0;
+
+    // Standard errors of the above, from the batches.
+    int batches = 0;
+    std::vector<double> energy_stderr, transmitted_stderr;
+    EnergyLedger ledger_stderr;
+    // The batches' own estimates: [batch][...] of each array above.
+    std::vector<double> energy_batches, transmitted_batches;
+    EnergyLedger ledger_batches;
+
+    // How the run ended: "rays" (the rays asked for), "target" (the accuracy target was met),
+    // "max_rays" or "max_seconds" (the target's budget ran out first).
+    std::string stop = "rays";
+    long long rounds = 1;       // passes over every batch
+    double achieved_error = -1; // the target quantity's relative standard error (-1: no target)
+};
+
+} // namespace gonio
