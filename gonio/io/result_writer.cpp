@@ -388,7 +388,8 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
         g.per_incidence(n + "_distance_stderr", cmp.distance_stderr, "1",
                         "standard error of " + n + "_distance (jackknife over the batches)");
         g.per_cell(n + "_ratio", cmp.ratio, "1",
-                   "simulated " + what + " / model_" + n + " per cell (0 where the model is 0)");
+                   "simulated " + what + " / model_" + n +
+                       " per cell (0 where the model is below 1e-12 of its peak)");
         g.per_cell(n + "_ratio_stderr", cmp.ratio_stderr, "1", "standard error of " + n + "_ratio");
     }
 }

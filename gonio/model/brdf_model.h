@@ -5,6 +5,7 @@
 #include "core/math.h"
 
 #include <cmath>
+#include <vector>
 
 namespace gonio {
 
@@ -27,8 +28,13 @@ class BrdfModel {
     virtual void eval_cosine(const Vec3& i, const Vec3& o, double* out) const = 0;
     // Angular widths (radians) of the narrowest and widest features of the lobe around the mirror
     // direction: the cell integrator refines down to the first within reach of the second.
+    // Infinity: a smooth term with no lobe there (refined by its error estimate alone).
     virtual double narrowest_feature() const = 0;
     virtual double widest_feature() const = 0;
+    // The terms whose sum the model is, each integrated over the cells on its own: a sharp
+    // lobe and a smooth but costly term (the interfaced Lambertian body) are refined each as it
+    // needs, not both as the sharper needs. By default the model is one term.
+    virtual std::vector<const BrdfModel*> terms() const { return {this}; }
 
     // f(i, o) in sr^-1 per channel.
     void eval(const Vec3& i, const Vec3& o, double* f) const {

@@ -65,14 +65,25 @@ class CellIntegrator {
         azimuthal = (r.p1 - r.p0) * std::sin(t1);
     }
 
-    // True while the rectangle could hide a lobe feature: wider than the lobe in theta or across,
-    // and within reach of the mirror direction (lobes of the centred NDFs sit around it).
-    // `split_polar` tells which side to halve: the one largest relative to the lobe's width.
+    // True while the rectangle could hide a feature: wider than the lobe in theta or across and
+    // within reach of the mirror direction (lobes of the centred NDFs sit around it), or wider
+    // than the masking band of a grazing incidence. `split_polar` tells which side to halve: the
+    // one largest relative to the feature's width.
     bool must_split(const Rect& r, bool& split_polar) const {
         double dt, dp;
         extents(r, dt, dp);
-        // Distances from the mirror direction to the rectangle's theta and phi intervals.
         const double t0 = std::acos(std::min(1.0, r.z1)), t1 = std::acos(std::max(0.0, r.z0));
+        // Masking: G changes as Lambda(o) reaches Lambda(i), at theta_o ~ theta_i for every
+        // azimuth: near grazing a band as thin as the incidence's distance to the horizon. The
+        // lobe's own needs come first.
+        const double band = kPi / 2 - theta_r_;
+        const bool in_band = t1 > theta_r_ - 4 * band && dt > 0.5 * band;
+        auto band_split = [&] {
+            if (in_band) split_polar = true;
+            return in_band;
+        };
+        if (std::isinf(narrow_)) return band_split(); // no lobe
+        // Distances from the mirror direction to the rectangle's theta and phi intervals.
         const double off_polar = std::max({0.0, t0 - theta_r_, theta_r_ - t1});
         double off_phi = 0;
         if (!(phi_r_ >= r.p0 && phi_r_ <= r.p1)) {
@@ -81,10 +92,14 @@ class CellIntegrator {
         }
         // Measured at the polar angle closest to the mirror direction (0 at the pole).
         const double across = off_phi * std::sin(std::clamp(theta_r_, t0, t1));
-        if (off_polar > reach_polar_ || across > reach_across_) return false;
-        const double width_across = narrow_ * std::max(cos_i_ + 0.5 * off_polar, 1e-4);
+        if (off_polar > reach_polar_ || across > reach_across_) return band_split();
+        // The grazing spike is narrow only near the mirror direction: `across` away from it, the
+        // half vector's tilt changes on the scale of that distance itself (else a whole horizon
+        // band would be cut to the spike's width).
+        const double width_across =
+            narrow_ * std::max(cos_i_ + 0.5 * off_polar, 1e-4) + 0.03 * across;
         const double rel_t = dt / width_polar_, rel_p = dp / width_across;
-        if (rel_t <= 0.5 && rel_p <= 0.5) return false;
+        if (rel_t <= 0.5 && rel_p <= 0.5) return band_split();
         split_polar = rel_t >= rel_p;
         return true;
     }
@@ -143,14 +158,16 @@ std::vector<double> model_cell_energy(const BrdfModel& model, const Vec3& wi,
                                       const BeckersSensor& sensor, const CellQuadrature& q) {
     const int nc = model.channels();
     std::vector<double> energy(static_cast<size_t>(sensor.cell_count()) * nc, 0.0);
-    const CellIntegrator integrator(model, wi, q);
-    // Cells are independent: the result does not depend on the thread count.
-    tbb::parallel_for(0, sensor.cell_count(), [&](int c) {
-        const SensorCell& cell = sensor.cell(c);
-        const Rect r{std::cos(cell.theta_max), std::cos(cell.theta_min), cell.phi_min,
-                     cell.phi_max};
-        integrator.integrate(r, &energy[static_cast<size_t>(c) * nc]);
-    });
+    for (const BrdfModel* term : model.terms()) {
+        const CellIntegrator integrator(*term, wi, q);
+        // Cells are independent: the result does not depend on the thread count.
+        tbb::parallel_for(0, sensor.cell_count(), [&](int c) {
+            const SensorCell& cell = sensor.cell(c);
+            const Rect r{std::cos(cell.theta_max), std::cos(cell.theta_min), cell.phi_min,
+                         cell.phi_max};
+            integrator.integrate(r, &energy[static_cast<size_t>(c) * nc]);
+        });
+    }
     return energy;
 }
 

@@ -26,10 +26,14 @@ class InterfacedLambertianModel final : public BrdfModel {
     InterfacedLambertianModel(const Ndf& ndf, std::vector<double> eta, std::vector<double> albedo,
                               MaskingForm masking, int body_points = 32);
 
+    InterfacedLambertianModel(const InterfacedLambertianModel&) = delete; // body_ points here
+    InterfacedLambertianModel& operator=(const InterfacedLambertianModel&) = delete;
     int channels() const override { return facet_.channels(); }
     void eval_cosine(const Vec3& i, const Vec3& o, double* out) const override;
     double narrowest_feature() const override { return specular_.narrowest_feature(); }
     double widest_feature() const override { return specular_.widest_feature(); }
+    // f_s and f_b apart: only f_s has a lobe, and f_b costs body_points^2 evaluations.
+    std::vector<const BrdfModel*> terms() const override { return {&specular_, &body_}; }
 
     // The two parts separately, times cos(theta_o), per channel.
     void specular_cosine(const Vec3& i, const Vec3& o, double* out) const;
@@ -37,12 +41,25 @@ class InterfacedLambertianModel final : public BrdfModel {
     const InterfacedLambertianFacet& facet() const { return facet_; }
 
   private:
+    // f_b as a model of its own: smooth, no lobe.
+    struct Body final : BrdfModel {
+        const InterfacedLambertianModel* owner;
+        explicit Body(const InterfacedLambertianModel* o) : owner(o) {}
+        int channels() const override { return owner->channels(); }
+        void eval_cosine(const Vec3& i, const Vec3& o, double* out) const override {
+            owner->body_cosine(i, o, out);
+        }
+        double narrowest_feature() const override { return INFINITY; }
+        double widest_feature() const override { return INFINITY; }
+    };
+
     const Ndf& ndf_;
     InterfacedLambertianFacet facet_;
     MicrofacetModel specular_;
     MaskingForm masking_;
     std::vector<Vec3> nodes_;     // m
     std::vector<double> weights_; // Gauss-Legendre weight / (m.n): int g D dm = sum w g(m)
+    Body body_{this};
 };
 
 } // namespace gonio

@@ -2,6 +2,7 @@
 
 #include "core/batch_means.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace gonio {
@@ -77,9 +78,13 @@ Comparison compare_model(const TraceResult& sim, bool all_orders, const ModelMap
             return distance(s, without, k);
         });
         c.distance_stderr[k] = std::hypot(j_s, j_m);
+        // Ratios where the model is not negligible (a ratio to a denormal is no information, and
+        // its error overflows).
+        double peak = 0;
+        for (size_t cell = 0; cell < cells; ++cell) peak = std::max(peak, m[cell * nc + k]);
         for (size_t cell = 0; cell < cells; ++cell) {
             const size_t i = cell * nc + k;
-            if (m[i] <= 0) continue;
+            if (m[i] <= 1e-12 * peak) continue;
             const double me = MB > 1 ? m_err[i] : model.relative_tolerance * m[i];
             c.ratio[i] = s[i] / m[i];
             c.ratio_stderr[i] = std::hypot(s_err[i] / m[i], s[i] * me / (m[i] * m[i]));

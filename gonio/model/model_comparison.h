@@ -25,7 +25,8 @@ struct Comparison {
     std::vector<double> relative_difference, relative_difference_stderr, sigmas;
     // sum |f_sim - f_model| Omega_perp / sum f_model Omega_perp (jackknife standard error).
     std::vector<double> distance, distance_stderr;
-    std::vector<double> ratio, ratio_stderr; // sim / model per cell (0 where the model is 0)
+    // sim / model per cell (0 where the model is below 1e-12 of its brightest cell)
+    std::vector<double> ratio, ratio_stderr;
 };
 
 // all_orders: against every order (L-infinity) instead of single scattering.
