@@ -1,6 +1,7 @@
 // End-to-end: the gonio binary, its exit codes and messages, and the HDF5 result file.
 #include "gonio/io/hdf5_handles.h"
 #include "gonio/io/result_reader.h"
+#include "tests/cli_harness.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -16,50 +17,9 @@
 
 namespace fs = std::filesystem;
 using namespace gonio;
+using namespace gonio::test;
 
 namespace {
-struct Run {
-    int code;
-    std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-// Runs the gonio binary with arguments (shell-quoted by the caller) in `dir`.
-Run run_gonio(const fs::path& dir, const std::string& args) {
-    const std::string cmd = "cd '" + dir.string() + "' && '" + GONIO_BINARY + "' " + args +
-                            " > stdout.txt 2> stderr.txt < /dev/null";
-    const int status = std::system(cmd.c_str());
-    Run r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(dir / "stdout.txt"),
-          slurp(dir / "stderr.txt")};
-    fs::remove(dir / "stdout.txt");
-    fs::remove(dir / "stderr.txt");
-    return r;
-}
-
-fs::path fresh_dir(const std::string& name) {
-    const fs::path d =
-        fs::temp_directory_path() / ("gonio_test_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
-
-void write(const fs::path& p, const std::string& text) {
-    std::ofstream(p) << text;
-}
-
-int files_in(const fs::path& d) {
-    int n = 0;
-    for (const auto& e : fs::directory_iterator(d)) n += e.is_regular_file();
-    return n;
-}
-
 const char* kSmall = R"(seed = 3
 [ndf]
 type = "beckmann"
@@ -238,6 +198,22 @@ TEST_CASE("every config error path: exit code 2, one line naming file and key, n
         {ok, "--set material.f0=0.5", "key 'material.f0': is not used by any case"},
         {"[ndf]\ntype = \"ggx\"\n", "", "c.toml:1: key 'ndf.alpha': missing"},
         {"[ndf\n", "", "c.toml:1: TOML syntax error"},
+        // Outside gonio's domain: rejected before any work.
+        {ok, "--set beam.theta_i=90",
+         "key 'beam.theta_i': value 90 is out of range; allowed [0, 90)"},
+        {ok, "--set ndf.type=student_t --set ndf.gamma=1.01",
+         "key 'ndf.gamma': value 1.010000 is outside gonio's domain [2, 1e6]"},
+        {ok, "--set ndf.alpha=200", "key 'ndf.alpha': value 200 is out of range"},
+        {ok, "--set material.type=dielectric --set material.eta=0",
+         "key 'material.eta': value 0 is out of range"},
+        {ok, "--set material.type=lambertian --set material.albedo=1.5",
+         "key 'material.albedo': value 1.5 is out of range; allowed [0, 1]"},
+        {ok, "--set trace.max_bounces=0", "key 'trace.max_bounces': value 0 is out of range"},
+        {ok, "--set surface.size=4", "key 'surface.size': value 4 is out of range"},
+        {ok, "--set trace.batches=1", "key 'trace.batches': value 1 is out of range"},
+        {ok, "--set trace.target_error=0", "key 'trace.target_error': value 0 is out of range"},
+        {ok, "--set trace.max_rays=100",
+         "key 'trace.max_rays': applies only with trace.target_error"},
     };
     for (const Bad& b : cases) {
         CAPTURE(b.expect);

@@ -314,8 +314,15 @@ class Loader {
                                      "blend", "mixture", "tabulated", "height_map"});
         // Shape parameters of the generalised family [R19 section 2.1], in the ranges where D is
         // bounded and Smith's Lambda finite (see heightfield/ndf/).
-        if (s.type == "student_t")
-            s.gamma = all.number("gamma", {StudentT::kGammaMin, StudentT::kGammaMax});
+        if (s.type == "student_t") {
+            s.gamma = all.number("gamma", {1, StudentT::kGammaMax, true, false});
+            if (s.gamma < StudentT::kGammaMin) // a valid distribution, but not a surface's
+                all.fail("gamma", "value " + std::to_string(s.gamma) +
+                                      " is outside gonio's domain [2, 1e6]: below 2 the slopes' "
+                                      "variance is infinite (no height field follows them) and "
+                                      "D diverges at the horizon; at 3/2 or below Smith's Lambda "
+                                      "is infinite");
+        }
         if (s.type == "generalized_normal")
             s.p = all.number("p", {GeneralizedNormal::kPMin, GeneralizedNormal::kPMax});
         if (s.type == "generalized_t") {
