@@ -13,6 +13,7 @@
 #include "heightfield/ndf/student_t.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <set>
@@ -316,8 +317,10 @@ class Loader {
         // bounded and Smith's Lambda finite (see heightfield/ndf/).
         if (s.type == "student_t") {
             s.gamma = all.number("gamma", {1, StudentT::kGammaMax, true, false});
+            char value[32];
+            std::snprintf(value, sizeof value, "%g", s.gamma);
             if (s.gamma < StudentT::kGammaMin) // a valid distribution, but not a surface's
-                all.fail("gamma", "value " + std::to_string(s.gamma) +
+                all.fail("gamma", "value " + std::string(value) +
                                       " is outside gonio's domain [2, 1e6]: below 2 the slopes' "
                                       "variance is infinite (no height field follows them) and "
                                       "D diverges at the horizon; at 3/2 or below Smith's Lambda "
