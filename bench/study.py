@@ -13,8 +13,10 @@ sweep on one surface against one surface per incidence.
 Writes <out>/study.csv, <out>/study.png (error against time, one curve per knob, log-log),
 <out>/table.md (what to set for ~1 %, ~0.1 % and ~0.01 %) and <out>/ratios.md, and prints them.
 
-Usage: bench/study.py [--gonio build/gonio] [--out docs/study] [--quick]
+Usage: bench/study.py [--gonio build/gonio] [--out docs/study] [--quick] [--cases A,...]
 --quick runs tiny sizes (a smoke test: minutes become seconds; the numbers mean nothing).
+--cases runs some cases only: their rows replace theirs in an existing <out>/study.csv and
+<out>/ratios.csv, and the table and plot are redrawn from the whole file.
 """
 import argparse
 import csv
@@ -223,15 +225,41 @@ def main():
             ratios.append((case, f"{len(thetas)} runs of one incidence / one sweep of "
                            f"{len(thetas)} (surface generated each time)", each / one))
 
-    with open(os.path.join(a.out, "study.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
+    rows = merge(os.path.join(a.out, "study.csv"), rows, list(rows[0].keys()))
+    ratios = merge(os.path.join(a.out, "ratios.csv"),
+                   [dict(case=c, ratio=w, value=v) for c, w, v in ratios], ["case", "ratio", "value"])
+    ratios = [(r["case"], r["ratio"], float(r["value"])) for r in ratios]
     write_ratios(a.out, ratios, machine)
     write_table(a.out, rows, p, machine)
     plot(a.out, rows, machine)
     shutil.rmtree(work, ignore_errors=True)
     print(f"study: wrote {a.out}/study.csv, study.png, table.md, ratios.md")
+
+
+def merge(path, new, fields):
+    """Writes `new` to the CSV at path, keeping the rows of the cases `new` does not have."""
+    ran = {r["case"] for r in new}
+    old = []
+    if os.path.exists(path):
+        with open(path, newline="") as f:
+            old = [r for r in csv.DictReader(f) if r["case"] not in ran]
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields)
+        w.writeheader()
+        w.writerows(old + new)
+    with open(path, newline="") as f:  # numbers back as numbers
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        for k, v in r.items():
+            try:
+                r[k] = float(v) if k not in ("case", "knob", "ratio") else v
+            except ValueError:
+                pass
+        if "value" in r and "knob" in r:
+            r["value"] = int(r["value"])
+    order = list(CASES)
+    rows.sort(key=lambda r: order.index(r["case"]) if r["case"] in order else len(order))
+    return rows
 
 
 def write_ratios(out, ratios, machine):
@@ -292,6 +320,7 @@ def plot(out, rows, machine):
                 x, y, v = zip(*pts)
                 ax.loglog(x, y, "o-", label=knob, ms=3)
                 ax.annotate(str(v[-1]), (x[-1], y[-1]), fontsize=6)
+            ax.set_ylim(bottom=1e-8)  # the quadrature's errors go on down to round-off
             ax.set_xlabel("wall time (s)")
             ax.set_ylabel(label)
             ax.grid(True, which="both", alpha=0.3)

@@ -159,7 +159,12 @@ std::vector<double> model_cell_energy(const BrdfModel& model, const Vec3& wi,
     const int nc = model.channels();
     std::vector<double> energy(static_cast<size_t>(sensor.cell_count()) * nc, 0.0);
     for (const BrdfModel* term : model.terms()) {
-        const CellIntegrator integrator(*term, wi, q);
+        // A smooth term (no lobe: the IL body, whose every evaluation is a body_points^2 sum) is
+        // as accurate with 2 points per axis and the same tolerance, in a quarter of the time
+        // (bench/study.py, case D).
+        CellQuadrature tq = q;
+        if (std::isinf(term->narrowest_feature())) tq.points = std::min(q.points, 2);
+        const CellIntegrator integrator(*term, wi, tq);
         // Cells are independent: the result does not depend on the thread count.
         tbb::parallel_for(0, sensor.cell_count(), [&](int c) {
             const SensorCell& cell = sensor.cell(c);
