@@ -24,11 +24,12 @@ inline std::vector<double> batch_mean(const std::vector<double>& batches, int B)
 template <class Value>
 double batch_stderr(int B, const Value& value) {
     if (B < 2) return 0.0;
+    std::vector<double> x(static_cast<size_t>(B)); // each batch's value once: it may be a sum
     double mean = 0;
-    for (int b = 0; b < B; ++b) mean += value(b);
+    for (int b = 0; b < B; ++b) mean += (x[size_t(b)] = value(b));
     mean /= B;
     double ss = 0;
-    for (int b = 0; b < B; ++b) ss += (value(b) - mean) * (value(b) - mean);
+    for (double v : x) ss += (v - mean) * (v - mean);
     return std::sqrt(ss / (double(B) * double(B - 1)));
 }
 
@@ -39,6 +40,19 @@ inline std::vector<double> batch_stderr(const std::vector<double>& batches, int 
     for (size_t i = 0; i < n; ++i)
         err[i] = batch_stderr(B, [&](int b) { return batches[size_t(b) * n + i]; });
     return err;
+}
+
+// Batches stored [batch][order][n]: per batch, the sum of orders from..to-1, stored [batch][n]
+// (L1, L2+, every order; of maps or of albedos).
+inline std::vector<double> sum_orders(const std::vector<double>& batches, int B, int orders,
+                                      int from, int to) {
+    const size_t n = batches.size() / (size_t(B) * size_t(orders));
+    std::vector<double> out(size_t(B) * n, 0.0);
+    for (size_t b = 0; b < size_t(B); ++b)
+        for (size_t o = size_t(from); o < size_t(to); ++o)
+            for (size_t i = 0; i < n; ++i)
+                out[b * n + i] += batches[(b * size_t(orders) + o) * n + i];
+    return out;
 }
 
 // The jackknife standard error of a statistic: without(b) is the statistic computed from every

@@ -88,15 +88,9 @@ TEST_CASE("reported errors agree with the spread of 40 seeds on one surface") {
         const TraceResult r = trace_incidence(scene, gold, sensor, wi, st);
         REQUIRE(r.batches == 32);
         l1.add(r.ledger.reflected[0], r.ledger_stderr.reflected[0]);
-        double l2 = 0;
-        for (int o = 1; o < r.orders; ++o) l2 += r.ledger.reflected[size_t(o)];
-        const std::vector<double> b = simulated_batches(r, true);
-        l2plus.add(l2, batch_stderr(r.batches, [&](int k) {
-                       double s = 0;
-                       for (int o = 1; o < r.orders; ++o)
-                           s += r.ledger_batches.reflected[size_t(k * r.orders + o)];
-                       return s;
-                   }));
+        const std::vector<double> l2 =
+            sum_orders(r.ledger_batches.reflected, r.batches, r.orders, 1, r.orders);
+        l2plus.add(batch_mean(l2, r.batches)[0], batch_stderr(l2, r.batches)[0]);
         absorbed.add(r.ledger.absorbed[0], r.ledger_stderr.absorbed[0]);
         const Comparison c = compare_model(r, false, m);
         distance.add(c.distance[0], c.distance_stderr[0]);

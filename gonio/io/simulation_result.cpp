@@ -16,25 +16,13 @@ void append_side(SimulatedSide& side, const TraceResult& r, const std::vector<do
                  const std::vector<double>& order_energy,
                  const std::vector<double>& order_energy_stderr,
                  const std::vector<double>& order_batches) {
-    const int B = r.batches;
-    const size_t nc = size_t(r.channels), map = size_t(r.cells) * nc, no = size_t(r.orders);
+    const int B = r.batches, no = r.orders;
     append(side.energy, energy), append(side.energy_stderr, energy_stderr);
     append(side.order_energy, order_energy), append(side.order_energy_stderr, order_energy_stderr);
-    auto sum_orders = [&](const std::vector<double>& v, size_t n, size_t b, size_t i, size_t from) {
-        double s = 0;
-        for (size_t o = from; o < no; ++o) s += v[(b * no + o) * n + i];
-        return s;
-    };
-    for (size_t from : {size_t(1), size_t(0)}) {
-        std::vector<double> cells(map), albedo(nc);
-        for (size_t i = 0; i < map; ++i)
-            cells[i] = batch_stderr(B, [&](int b) { return sum_orders(batches, map, b, i, from); });
-        for (size_t k = 0; k < nc; ++k)
-            albedo[k] =
-                batch_stderr(B, [&](int b) { return sum_orders(order_batches, nc, b, k, from); });
-        append(from ? side.higher_stderr : side.all_stderr, cells);
-        append(from ? side.higher_albedo_stderr : side.all_albedo_stderr, albedo);
-    }
+    append(side.higher_stderr, batch_stderr(sum_orders(batches, B, no, 1, no), B));
+    append(side.all_stderr, batch_stderr(sum_orders(batches, B, no, 0, no), B));
+    append(side.higher_albedo_stderr, batch_stderr(sum_orders(order_batches, B, no, 1, no), B));
+    append(side.all_albedo_stderr, batch_stderr(sum_orders(order_batches, B, no, 0, no), B));
 }
 
 void append(Comparison& to, const Comparison& c) {

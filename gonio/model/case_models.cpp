@@ -99,17 +99,11 @@ std::vector<std::vector<double>> CaseModels::evaluate(const Vec3& wi, const Beck
                 higher[e % size_t(nc)] += v.ledger.reflected[e];
             append(r.l2plus_albedo, higher);
             last.batches = v.batches;
-            last.energy_batches = simulated_batches(v, true);
+            last.energy_batches = sum_orders(v.energy_batches, v.batches, v.orders, 0, v.orders);
             append(r.energy_stderr, batch_stderr(last.energy_batches, v.batches));
-            std::vector<double> albedo_err(static_cast<size_t>(nc));
-            for (size_t ch = 0; ch < size_t(nc); ++ch)
-                albedo_err[ch] = batch_stderr(v.batches, [&](int b) {
-                    double a = 0;
-                    for (size_t i = ch; i < per_order; i += size_t(nc))
-                        a += last.energy_batches[size_t(b) * per_order + i];
-                    return a;
-                });
-            append(r.albedo_stderr, albedo_err);
+            append(r.albedo_stderr, batch_stderr(sum_orders(v.ledger_batches.reflected, v.batches,
+                                                            v.orders, 0, v.orders),
+                                                 v.batches));
         }
         last.energy = energy;
         const std::vector<double> albedo = albedo_from_cells(energy, nc);

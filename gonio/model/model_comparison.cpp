@@ -7,21 +7,11 @@
 
 namespace gonio {
 
-std::vector<double> simulated_batches(const TraceResult& sim, bool all_orders) {
-    const size_t map = size_t(sim.cells) * sim.channels, B = size_t(sim.batches);
-    const size_t orders = all_orders ? size_t(sim.orders) : 1;
-    std::vector<double> out(B * map, 0.0);
-    for (size_t b = 0; b < B; ++b)
-        for (size_t o = 0; o < orders; ++o)
-            for (size_t i = 0; i < map; ++i)
-                out[b * map + i] += sim.energy_batches[(b * sim.orders + o) * map + i];
-    return out;
-}
-
 Comparison compare_model(const TraceResult& sim, bool all_orders, const ModelMap& model) {
     const size_t nc = size_t(sim.channels), cells = size_t(sim.cells), map = cells * nc;
     const int B = sim.batches, MB = model.batches;
-    const std::vector<double> s_batches = simulated_batches(sim, all_orders);
+    const std::vector<double> s_batches =
+        sum_orders(sim.energy_batches, B, sim.orders, 0, all_orders ? sim.orders : 1);
     const std::vector<double> s = batch_mean(s_batches, B), s_err = batch_stderr(s_batches, B);
     const std::vector<double> m_err =
         MB > 1 ? batch_stderr(model.energy_batches, MB) : std::vector<double>(map, 0.0);

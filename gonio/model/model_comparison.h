@@ -32,7 +32,4 @@ struct Comparison {
 // all_orders: against every order (L-infinity) instead of single scattering.
 Comparison compare_model(const TraceResult& sim, bool all_orders, const ModelMap& model);
 
-// The simulated energies [cell][channel] of order 1 (or every order), per batch: [batch][...].
-std::vector<double> simulated_batches(const TraceResult& sim, bool all_orders);
-
 } // namespace gonio
