@@ -61,7 +61,7 @@ int main(int argc, char** argv) {
             if (generator == "algorithm1" && n > 512) break;
             const double peak = run_isolated([&] {
                 SurfaceSpec spec;
-                spec.generator = generator;
+                spec.generator = generator_named(generator);
                 spec.size = n;
                 spec.iterations = iterations;
                 GenerationLog log;

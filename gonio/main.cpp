@@ -1,6 +1,6 @@
 // gonio: a virtual gonioreflectometer for explicit microfacet surfaces. See README.md.
 #include "gonio/cli/commands.h"
-#include "gonio/config/config_error.h"
+#include "core/config_error.h"
 #include "gonio_version.h"
 
 #include <CLI/CLI.hpp>

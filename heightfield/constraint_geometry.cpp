@@ -5,14 +5,12 @@
 
 namespace gonio {
 
-HeightField constraint_geometry(const std::string& kind, int n, int lattice, double relief) {
-    if (kind != "domes" && kind != "holes")
-        throw std::invalid_argument("constraint must be \"domes\" or \"holes\", got \"" + kind +
-                                    "\"");
+HeightField constraint_geometry(Constraint kind, int n, int lattice, double relief) {
+    if (kind == Constraint::none) throw std::invalid_argument("constraint must be domes or holes");
     if (lattice < 1 || lattice > n / 2) throw std::invalid_argument("lattice must be in [1, n/2]");
     HeightField s(n, 1.0);
     const double period = double(n) / lattice, radius = 0.4 * period;
-    const double sign = kind == "domes" ? 1.0 : -1.0;
+    const double sign = kind == Constraint::domes ? 1.0 : -1.0;
     for (int y = 0; y < n; ++y) {
         for (int x = 0; x < n; ++x) {
             // Offset from the nearest feature centre (centres at (k + 1/2) period).

@@ -292,9 +292,9 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
     GenerationLog local;
     GenerationLog* lg = log ? log : &local;
     *lg = GenerationLog{};
-    if (spec.generator == "heitz") {
+    if (spec.generator == Generator::heitz) {
         double ax, ay;
-        if (ndf.name() != "beckmann" || !ndf.slope_stretch(ax, ay))
+        if (!ndf.gaussian_slopes(ax, ay))
             throw std::invalid_argument("the heitz generator makes Beckmann surfaces only");
         HeightField s = heitz_surface(n, ax, ay, spec.correlation_length, spec.seed);
         for (float& v : s.h) v = float(v * spec.spacing);
@@ -310,7 +310,7 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
     // The gradient field is written straight into the integrator's FFTW buffers.
     float* p = fc.gradient_x();
     float* q = fc.gradient_y();
-    const bool constrained = spec.constraint != "none";
+    const bool constrained = spec.constraint != Constraint::none;
     HeightField geometry;
     if (constrained) {
         // R19 5.3.2: the gradient field starts from a geometry; the pool still follows D.
@@ -339,7 +339,7 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
     log_schwarz(p, q, n, spec.threshold, lg);
     integrate();
 
-    const bool sliced = spec.generator == "sliced-matching";
+    const bool sliced = spec.generator == Generator::sliced_matching;
     double ax = 1, ay = 1;
     std::unique_ptr<Quantiles> quantile;
     SlicedWork work;
@@ -373,7 +373,7 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
         // wide axis's residual into the narrow one, which the stretch amplifies, and the
         // iteration diverges.
         if (ax != ay) fc.set_metric(1 / (ax * ax), 1 / (ay * ay));
-    } else if (spec.generator == "algorithm1") {
+    } else if (spec.generator == Generator::algorithm1) {
         assigned.resize(cells);
         for (size_t k = 0; k < cells; ++k) assigned[k] = int(k);
         if (constrained) {
@@ -388,7 +388,8 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
             integrate();
         }
     } else {
-        throw std::invalid_argument("generate_surface: unknown generator '" + spec.generator + "'");
+        throw std::invalid_argument(std::string("generate_surface: cannot generate with ") +
+                                    name_of(spec.generator));
     }
 
     double best_distance = 1e30;

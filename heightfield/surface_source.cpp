@@ -50,8 +50,8 @@ ExrAttributes surface_attributes(const Ndf& ndf, const SurfaceSpec& spec,
     ExrAttributes a;
     a.text["gonio_identity"] = surface_identity(ndf, spec);
     a.text["gonio_ndf"] = ndf.describe();
-    a.text["gonio_generator"] = spec.generator;
-    a.text["gonio_constraint"] = spec.constraint;
+    a.text["gonio_generator"] = name_of(spec.generator);
+    a.text["gonio_constraint"] = name_of(spec.constraint);
     a.text["gonio_seed"] = std::to_string(spec.seed);
     a.text["gonio_version"] = std::string(kVersion) + " (git " + kGitHash + ")";
     a.text["gonio_schwarz_mean"] = join(log.schwarz_mean);
@@ -74,10 +74,10 @@ HeightField obtain_surface(const Ndf& ndf, const SurfaceSpec& spec, const Surfac
             std::ostringstream w;
             w.precision(3);
             w << spec.input << " is not periodic (its edges jump " << ratio
-              << " times the mean step); edges = \"" << spec.edges << "\"";
+              << " times the mean step); edges = \"" << name_of(spec.edges) << "\"";
             origin.warning = w.str();
         }
-        if (spec.edges == "mirror") {
+        if (spec.edges == Edges::mirror) {
             origin.edges = "mirror: tiled with its mirror images into a periodic " +
                            std::to_string(2 * s.n) + "^2 map";
             return mirror_tile(s);

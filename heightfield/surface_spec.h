@@ -1,18 +1,39 @@
 #pragma once
 // What defines a generated surface (the config's [surface] table). Everything here, with the NDF,
-// goes into the cache key.
+// goes into the cache key. The generators' keys are declared in surface_spec.cpp, where the
+// [surface] table is read.
+#include "core/config_key.h"
+#include "core/table_reader.h"
+
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace gonio {
 
+class Ndf;
+
+enum class Generator {
+    sliced_matching, // default: sliced optimal-transport matching (README)
+    algorithm1,      // R19 Algorithm 1 as published
+    heitz,           // a periodic random-phase Gaussian surface: Beckmann slopes (Heitz 2015)
+    input,           // a measured height or normal map (surface.input)
+};
+// Constrained generation [R19 5.3.2]: the gradient field starts from a square lattice of domes
+// or holes instead of a random assignment; the pool still follows the NDF.
+enum class Constraint { none, domes, holes };
+// Loaded maps: used as they are, or made periodic by tiling with mirror images.
+enum class Edges { periodic, mirror };
+
+const char* name_of(Generator g); // "sliced-matching", "algorithm1", "heitz", "input"
+const char* name_of(Constraint c);
+const char* name_of(Edges e);
+// The inverse, for tools and tests; throws std::invalid_argument.
+Generator generator_named(const std::string& name);
+
 struct SurfaceSpec {
-    // "sliced-matching" (default: see README), "algorithm1" (R19 Algorithm 1 as published) or
-    // "heitz" (a periodic random-phase Gaussian surface: Beckmann slopes, Heitz 2015).
-    std::string generator = "sliced-matching";
-    // Constrained generation [R19 5.3.2]: the gradient field starts from a square lattice of
-    // "domes" or "holes" instead of a random assignment ("none"); the pool still follows the NDF.
-    std::string constraint = "none";
+    Generator generator = Generator::sliced_matching;
+    Constraint constraint = Constraint::none;
     double correlation_length = 8.0;  // heitz: Gaussian correlation length, in samples
     int size = 256;                   // samples per side
     double spacing = 1.0;             // distance between samples
@@ -20,11 +41,16 @@ struct SurfaceSpec {
     double threshold = 0.02;          // Schwarz threshold, R19: 0.02
     bool stop_when_converged = false; // stop when the NDF distance stops improving
     std::uint64_t seed = 1;
-    int lattice = 8;     // domes/holes: features per side
-    double relief = 0.5; // domes/holes: feature height over its radius
-    std::string input;   // an EXR height map to load instead of generating
-    std::string edges =
-        "periodic"; // loaded maps: "periodic" or "mirror" (made periodic by mirroring)
+    int lattice = 8;              // domes/holes: features per side
+    double relief = 0.5;          // domes/holes: feature height over its radius
+    std::string input;            // an EXR height map to load instead of generating
+    Edges edges = Edges::periodic; // loaded maps
 };
+
+// Reads [surface] for a case whose distribution is `ndf`; `seed` is the run's seed (the default
+// of surface.seed).
+SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf);
+// The [surface] keys: common ones, then each generator's.
+std::vector<KeyGroup> surface_key_groups();
 
 } // namespace gonio

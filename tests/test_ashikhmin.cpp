@@ -62,7 +62,7 @@ TEST_CASE("A00: reciprocal, and energy conserving [section 5.3] for several dist
                                          satin_density()};
     AshikhminSettings correlated;
     correlated.correlation_width = radians(15.0);
-    correlated.diffuse = "dielectric";
+    correlated.diffuse = AshikhminDiffuse::dielectric;
     correlated.theta_nodes = 31, correlated.phi_nodes = 8; // R(k) is integrated exactly below
     for (const NormalDensity& p : densities) {
         CAPTURE(p.description);
@@ -109,15 +109,15 @@ TEST_CASE("A00 velvet [Eq. 35]: reciprocal, and retroreflective with the correla
 TEST_CASE("A00 diffuse term [Eq. 28-30]: a white surface returns everything; a metal keeps f0") {
     const Ggx ndf(0.4, 0.4);
     const BeckersSensor sensor(577);
-    for (std::string kind : {"dielectric", "metal"}) {
-        CAPTURE(kind);
+    for (AshikhminDiffuse kind : {AshikhminDiffuse::dielectric, AshikhminDiffuse::metal}) {
+        CAPTURE(int(kind));
         AshikhminSettings s;
         s.diffuse = kind;
         const FresnelTerm fresnel =
-            kind == "metal" ? FresnelTerm::schlick({0.9}) : FresnelTerm::dielectric({1.5});
+            kind == AshikhminDiffuse::metal ? FresnelTerm::schlick({0.9}) : FresnelTerm::dielectric({1.5});
         const AshikhminModel model(density_of(ndf), fresnel, s);
         AshikhminSettings bare = s;
-        bare.diffuse = "none";
+        bare.diffuse = AshikhminDiffuse::none;
         const AshikhminModel specular(density_of(ndf), fresnel, bare);
         double f0 = 0;
         fresnel.eval(1.0, &f0);
@@ -131,10 +131,10 @@ TEST_CASE("A00 diffuse term [Eq. 28-30]: a white surface returns everything; a m
             // Expected: R + (1 - R) (white), R + f0 (f0 - R) (metal, rho_d = f0); the model uses
             // the tabulated R, the cells integrate rho_s: they differ by the table's error.
             const double expected =
-                kind == "metal" ? r_cells + f0 * std::max(0.0, f0 - r) : r_cells + (1 - r);
+                kind == AshikhminDiffuse::metal ? r_cells + f0 * std::max(0.0, f0 - r) : r_cells + (1 - r);
             CHECK(std::abs(total - expected) <= 1e-5);
             CHECK(std::abs(r - r_cells) <= 2e-3);
-            if (kind == "dielectric") CHECK(total == doctest::Approx(1.0).epsilon(2e-3));
+            if (kind == AshikhminDiffuse::dielectric) CHECK(total == doctest::Approx(1.0).epsilon(2e-3));
         }
     }
 }

@@ -192,7 +192,7 @@ TEST_CASE("an accuracy target: met, said, reproducible, and its error is the spr
     }
     SUBCASE("a cell target counts the cells above its fraction of the peak") {
         st.seed = 1;
-        st.target.quantity = "l1_cells";
+        st.target.quantity = TargetQuantity::l1_cells;
         st.target.relative_error = 0.05;
         const TraceResult r = trace_incidence(scene, mirror, sensor, wi, st);
         CHECK(r.stop == "target");

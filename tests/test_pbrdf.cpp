@@ -109,7 +109,7 @@ TEST_CASE(
     // lobe's variance is a sample variance over a few texels -- TV 0.08 against 0.016 here).
     SurfaceSpec spec;
     spec.size = 64;
-    spec.generator = "heitz";
+    spec.generator = Generator::heitz;
     spec.correlation_length = 8;
     const HeightField s = generate_surface(Beckmann(0.1, 0.4), spec, 2);
     const PBrdfModel p(fit_slope_lobes(s), FresnelTerm::mirror());

@@ -51,8 +51,8 @@ HeightField make(const Ndf& ndf, const std::string& generator, int iterations = 
     SurfaceSpec s;
     s.size = 256;
     s.iterations = iterations;
-    s.generator = generator;
-    s.constraint = constraint;
+    s.generator = generator_named(generator);
+    s.constraint = constraint == "none" ? Constraint::none : constraint == "domes" ? Constraint::domes : Constraint::holes;
     s.seed = seed;
     return generate_surface(ndf, s, 2, log);
 }
@@ -156,7 +156,7 @@ TEST_CASE("Heitz and constrained generators follow Beckmann too") {
     // (measured: Heitz 2.7x, constrained 2.1x; README).
     const Beckmann beckmann(0.5);
     SurfaceSpec heitz;
-    heitz.generator = "heitz";
+    heitz.generator = Generator::heitz;
     heitz.size = 256;
     check_fidelity(generate_surface(beckmann, heitz, 2), beckmann, 0.5, 0.5, 3.0);
     for (const std::string c : {"domes", "holes"}) {
@@ -197,7 +197,7 @@ TEST_CASE("same seed, same heights with 1 and 2 threads; another seed, another s
         SurfaceSpec s;
         s.size = 128;
         s.iterations = 30;
-        s.generator = g;
+        s.generator = generator_named(g);
         HeightField one, two;
         {
             tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
@@ -282,7 +282,7 @@ TEST_CASE("a non-periodic measured map is detected and can be made periodic by m
     write_height_exr((dir / "ramp.exr").string(), ramp, {});
     SurfaceSpec spec;
     spec.input = (dir / "ramp.exr").string();
-    spec.edges = "mirror";
+    spec.edges = Edges::mirror;
     SurfaceOrigin origin;
     const HeightField loaded = obtain_surface(Beckmann(0.5), spec, SurfaceCache(""), 1, origin);
     CHECK(origin.loaded);
@@ -326,19 +326,19 @@ TEST_CASE("the cache key covers every parameter that defines a surface") {
     CHECK(differs(s));
     s = base, s.seed = 2;
     CHECK(differs(s));
-    s = base, s.generator = "algorithm1";
+    s = base, s.generator = Generator::algorithm1;
     CHECK(differs(s));
-    s = base, s.constraint = "domes";
+    s = base, s.constraint = Constraint::domes;
     CHECK(differs(s));
     s = base, s.stop_when_converged = true;
     CHECK(differs(s));
     SurfaceSpec d = base;
-    d.constraint = "domes";
+    d.constraint = Constraint::domes;
     const std::string kd = surface_cache_key(b, d);
     d.lattice = 4;
     CHECK(surface_cache_key(b, d) != kd);
     SurfaceSpec h = base;
-    h.generator = "heitz";
+    h.generator = Generator::heitz;
     const std::string kh = surface_cache_key(b, h);
     h.correlation_length = 4;
     CHECK(surface_cache_key(b, h) != kh);

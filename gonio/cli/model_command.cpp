@@ -2,81 +2,75 @@
 #include "gonio/cli/commands.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
-#include "gonio/config/config_error.h"
+#include "core/config_error.h"
 #include "gonio/io/result_writer.h"
-#include "gonio/model/case_models.h"
-#include "heightfield/surface_source.h"
+#include "gonio/pipeline/simulate_case.h"
 
 #include <cstdio>
 #include <filesystem>
-#include <memory>
+
 namespace gonio {
 
-namespace {
-std::string default_output(const std::string& config) {
-    std::filesystem::path p(config);
-    return p.stem().string() + ".h5";
-}
-} // namespace
-
 int run_model_command(const ModelOptions& options) {
+    const auto start = PhaseTimes::Clock::now();
     const Config cfg = load_config(options.config, options.overrides); // throws ConfigError
+    cfg.require_beam("gonio model");
     for (size_t k = 0; k < cfg.cases.size(); ++k)
-        if (cfg.cases[k].models.empty())
+        if (cfg.cases[k].model.models.empty())
             throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].model.evaluate",
                               "gonio model evaluates the models; this case has none");
-    const std::string output =
-        options.output.empty() ? default_output(options.config) : options.output;
+    PhaseTimes run;
+    double ndf_seconds = 0;
+    for (const CaseConfig& c : cfg.cases) ndf_seconds += c.ndf_seconds;
+    run.add("config", std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count() -
+                          ndf_seconds);
+    auto t = PhaseTimes::Clock::now();
+    const std::string output = options.output.empty()
+                                   ? std::filesystem::path(options.config).stem().string() + ".h5"
+                                   : options.output;
     const auto limit = limit_threads(options.threads);
-
     ResultWriter writer(output, options.overwrite); // refuses to replace a file before any work
     writer.write_run(cfg, options.command_line);
+    t = run.add_since("writing", t);
 
     long long total = 0, done = 0;
     for (const auto& c : cfg.cases) total += c.theta_i_deg.size() * c.phi_i_deg.size();
     Progress progress(total, options.quiet);
     if (!options.quiet)
         std::printf("%-24s %8s %8s  %-10s %s\n", "case", "theta_i", "phi_i", "model", "albedo");
-
+    CaseRunSettings settings;
+    settings.seed = cfg.seed;
+    settings.threads = worker_threads(options.threads);
+    settings.cache = surface_cache(false, ""); // the P-BRDF's surface, from the default cache
     for (size_t ci = 0; ci < cfg.cases.size(); ++ci) {
         const CaseConfig& c = cfg.cases[ci];
-        const BeckersSensor sensor(c.sensor_cells);
-        const auto ndf = make_ndf(c.ndf);
-        // The P-BRDF is fitted to the surface's slopes: made (or taken from the default cache).
-        HeightField surface;
-        if (c.needs_surface()) {
-            SurfaceOrigin origin;
-            surface = obtain_surface(*ndf, c.surface, surface_cache(false, ""),
-                                     worker_threads(options.threads), origin);
-        }
-        CaseModels models(c, *ndf, c.needs_surface() ? &surface : nullptr);
-        for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti) {
-            for (size_t pi = 0; pi < c.phi_i_deg.size(); ++pi) {
-                const double theta = c.theta_i_deg[ti], phi = c.phi_i_deg[pi];
-                char label[160];
-                std::snprintf(label, sizeof label, "%s theta_i=%g phi_i=%g", c.name.c_str(), theta,
-                              phi);
-                progress.update(done, label);
-                const Vec3 wi = spherical_direction(radians(theta), radians(phi));
-                // The same streams as gonio run's, so V-cavity estimates agree between the two.
-                const std::uint64_t stream =
-                    (std::uint64_t(ci) << 40) ^ (std::uint64_t(ti) << 20) ^ std::uint64_t(pi);
-                const auto albedos = models.evaluate(wi, sensor, cfg.seed, stream);
-                ++done;
-                if (!options.quiet) {
-                    progress.finish();
-                    for (size_t m = 0; m < albedos.size(); ++m) {
-                        std::printf("%-24s %8.3f %8.3f  %-10s", c.name.c_str(), theta, phi,
-                                    c.models[m].c_str());
-                        for (double a : albedos[m]) std::printf(" %.6f", a);
-                        std::printf("\n");
-                    }
-                }
+        CaseObserver observer;
+        observer.started = [&](const std::string& label) { progress.update(done, label); };
+        observer.finished = [&](const IncidenceReport& r) {
+            ++done;
+            if (options.quiet) return;
+            progress.finish();
+            for (size_t m = 0; m < r.model_albedos->size(); ++m) {
+                std::printf("%-24s %8.3f %8.3f  %-10s", c.name.c_str(), r.theta_deg, r.phi_deg,
+                            c.model.models[m].name.c_str());
+                for (double a : (*r.model_albedos)[m]) std::printf(" %.6f", a);
+                std::printf("\n");
             }
-        }
-        writer.write_model_case(c, sensor, models.results());
+        };
+        settings.case_index = ci;
+        const CaseResult result = evaluate_case_models(c, settings, observer);
+        t = PhaseTimes::Clock::now();
+        writer.write_model_case(c, c.ndf->describe(), *result.sensor, result.models);
+        PhaseTimes phases = result.phases;
+        phases.add_since("writing", t);
+        writer.write_timings(c.name, phases.phases());
+        run.merge(phases);
+        t = PhaseTimes::Clock::now();
     }
     progress.finish();
+    run.add_since("writing", t);
+    run.add("wall", std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count());
+    writer.write_timings("", run.phases());
     writer.commit();
     if (!options.quiet) std::printf("wrote %s\n", output.c_str());
     return 0;

@@ -6,7 +6,7 @@
 #include "gonio/cli/cli_common.h"
 #include "gonio/cli/commands.h"
 #include "gonio/config/config.h"
-#include "gonio/config/config_error.h"
+#include "core/config_error.h"
 #include "gonio/model/cell_integrator.h"
 #include "gonio/model/microfacet_model.h"
 
@@ -57,7 +57,7 @@ int run_ndf_command(const NdfOptions& options) {
         csv.precision(10);
     }
     for (const CaseConfig& c : cfg.cases) {
-        const auto ndf = make_ndf(c.ndf);
+        const Ndf* ndf = c.ndf.get();
         std::printf("%s: %s\n", c.name.c_str(), ndf->describe().c_str());
         std::printf("  int D cos dw = %.6f\n", normalisation(*ndf));
         std::printf("  %8s %12s %12s %12s %12s\n", "theta", "D(phi=0)", "D(phi=90)", "Lambda(0)",
@@ -66,14 +66,14 @@ int run_ndf_command(const NdfOptions& options) {
             std::printf("  %8.1f %12.6g %12.6g %12.6g %12.6g\n", t, at(*ndf, t, 0, false),
                         at(*ndf, t, 0.5 * kPi, false), at(*ndf, t, 0, true),
                         at(*ndf, t, 0.5 * kPi, true));
-        if (!c.diffuse()) {
+        if (!c.material.diffuse) {
             const BeckersSensor sensor(c.sensor_cells);
-            const MicrofacetModel model(*ndf, c.fresnel, c.masking);
+            const MicrofacetModel model(*ndf, c.material.fresnel, c.model.masking);
             for (double theta : c.theta_i_deg)
                 for (double phi : c.phi_i_deg) {
                     const Vec3 wi = spherical_direction(radians(theta), radians(phi));
                     const std::vector<double> albedo = albedo_from_cells(
-                        model_cell_energy(model, wi, sensor, c.quadrature), model.channels());
+                        model_cell_energy(model, wi, sensor, c.model.quadrature), model.channels());
                     std::printf("  Model L1 albedo at theta_i=%g phi_i=%g:", theta, phi);
                     for (double a : albedo) std::printf(" %.6f", a);
                     std::printf("\n");

@@ -3,115 +3,107 @@
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
 #include "gonio/io/result_writer.h"
-#include "gonio/material/facet_materials.h"
-#include "gonio/model/case_models.h"
-#include "gonio/trace/gonioreflectometer.h"
-#include "heightfield/surface_source.h"
+#include "gonio/pipeline/simulate_case.h"
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 
 namespace gonio {
 
+namespace {
+// One row per channel of a finished incidence: simulated L1 with its error, the first model of
+// single scattering beside it (every model is in the file), L2+, the transmitted and lost parts.
+void print_incidence(const CaseConfig& c, const IncidenceReport& r, int shown) {
+    const TraceResult& t = *r.trace;
+    const int nc = c.channels(), no = t.orders;
+    for (int k = 0; k < nc; ++k) {
+        double l2plus = 0, transmitted = 0;
+        for (int order = 0; order < no; ++order) {
+            if (order > 0) l2plus += t.ledger.reflected[size_t(order) * nc + k];
+            if (!t.ledger.transmitted.empty())
+                transmitted += t.ledger.transmitted[size_t(order) * nc + k];
+        }
+        std::printf("%-20s %7.2f %7.2f %10.6f %8.1e", c.name.c_str(), r.theta_deg, r.phi_deg,
+                    t.ledger.reflected[k], t.ledger_stderr.reflected[k]);
+        if (shown >= 0) {
+            const Comparison& cmp = (*r.comparisons)[size_t(shown)];
+            std::printf(" %10.6f %+10.4f %+7.1f", cmp.model_albedo[k], cmp.relative_difference[k],
+                        cmp.sigmas[k]);
+        } else {
+            std::printf(" %10s %10s %7s", "-", "-", "-");
+        }
+        std::printf(" %10.6f", l2plus);
+        if (c.material.transmits)
+            std::printf(" %10.6f", transmitted);
+        else
+            std::printf(" %10s", "-");
+        std::printf(" %9.2e", t.ledger.lost[k]);
+        if (c.trace.target.active())
+            std::printf("  %s: %.2e with %lld rays", t.stop.c_str(), t.achieved_error, t.rays);
+        std::printf("\n");
+    }
+}
+} // namespace
+
 int run_run_command(const RunOptions& o) {
+    const auto start = PhaseTimes::Clock::now();
     const Config cfg = load_config(o.config, o.overrides); // throws ConfigError
+    cfg.require_beam("gonio run");
+    PhaseTimes run;
+    double ndf_seconds = 0;
+    for (const CaseConfig& c : cfg.cases) ndf_seconds += c.ndf_seconds;
+    run.add("config", std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count() -
+                          ndf_seconds);
+    auto t = PhaseTimes::Clock::now();
     const auto limit = limit_threads(o.threads);
-    const int threads = worker_threads(o.threads);
     const std::string output =
         o.output.empty() ? std::filesystem::path(o.config).stem().string() + ".h5" : o.output;
     ResultWriter writer(output, o.overwrite); // an existing or unwritable output fails here
     writer.write_run(cfg, o.command_line);
-    const SurfaceCache cache = surface_cache(o.no_cache, o.cache_dir);
+    t = run.add_since("writing", t);
+
     long long total = 0, done = 0;
     for (const auto& c : cfg.cases) total += c.theta_i_deg.size() * c.phi_i_deg.size();
     if (!o.quiet)
         std::printf("%-20s %7s %7s %10s %8s %10s %10s %7s %10s %10s %9s\n", "case", "theta_i",
                     "phi_i", "L1", "+-", "model", "rel_diff", "sigmas", "L2+", "T", "lost");
+    Progress progress(total, o.quiet);
+    CaseRunSettings settings;
+    settings.seed = cfg.seed;
+    settings.threads = worker_threads(o.threads);
+    settings.cache = surface_cache(o.no_cache, o.cache_dir);
     for (size_t ci = 0; ci < cfg.cases.size(); ++ci) {
         const CaseConfig& c = cfg.cases[ci];
-        const auto ndf = make_ndf(c.ndf);
-        SurfaceOrigin origin;
-        const HeightField surface = obtain_surface(*ndf, c.surface, cache, threads, origin);
-        if (!origin.warning.empty())
-            std::fprintf(stderr, "gonio: warning: %s\n", origin.warning.c_str());
-        const Scene scene(surface); // one surface per case: sweeps never regenerate it
-        const BeckersSensor sensor(c.sensor_cells);
-        const auto materials = facet_materials(c);
-        std::vector<const Material*> parts;
-        for (const auto& m : materials) parts.push_back(m.get());
-        const bool transmits = materials[0]->transmits();
-        CaseModels models(c, *ndf, &surface);
-        // The terminal shows the first model of single scattering next to L1 (all are in the file).
+        // The terminal shows the first model of single scattering next to L1.
         int shown = -1;
-        for (size_t m = 0; m < c.models.size() && shown < 0; ++m)
-            if (models.results()[m].compared_with == "l1") shown = int(m);
-        const int nc = c.channels();
-        SimulationResult sim;
-        sim.orders = c.orders + 1;
-        sim.surface = origin.loaded ? c.surface.input : origin.cache_path;
-        Progress progress(total, o.quiet);
-        for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti) {
-            for (size_t pi = 0; pi < c.phi_i_deg.size(); ++pi) {
-                char label[160];
-                std::snprintf(label, sizeof label, "%s theta_i=%g phi_i=%g", c.name.c_str(),
-                              c.theta_i_deg[ti], c.phi_i_deg[pi]);
-                progress.update(done, label);
-                const Vec3 wi =
-                    spherical_direction(radians(c.theta_i_deg[ti]), radians(c.phi_i_deg[pi]));
-                TraceSettings st;
-                st.rays = c.rays;
-                st.orders = c.orders;
-                st.max_bounces = c.max_bounces;
-                st.batches = c.batches;
-                st.target = c.target;
-                st.seed = cfg.seed;
-                st.stream =
-                    (std::uint64_t(ci) << 40) ^ (std::uint64_t(ti) << 20) ^ std::uint64_t(pi);
-                const TraceResult r = trace_incidence(scene, parts, sensor, wi, st);
-                // The models' V-cavity paths draw from their own streams (key "VCAVITY").
-                models.evaluate(wi, sensor, cfg.seed, st.stream);
-                std::vector<Comparison> comparisons;
-                for (size_t m = 0; m < c.models.size(); ++m)
-                    comparisons.push_back(compare_model(
-                        r, models.results()[m].compared_with == "linf", models.last(m)));
-                sim.append(r, comparisons);
-                ++done;
-                if (!o.quiet) {
-                    progress.finish();
-                    for (int k = 0; k < nc; ++k) {
-                        double l2plus = 0, t = 0;
-                        for (int order = 0; order < sim.orders; ++order) {
-                            if (order > 0) l2plus += r.ledger.reflected[size_t(order) * nc + k];
-                            if (transmits) t += r.ledger.transmitted[size_t(order) * nc + k];
-                        }
-                        std::printf("%-20s %7.2f %7.2f %10.6f %8.1e", c.name.c_str(),
-                                    c.theta_i_deg[ti], c.phi_i_deg[pi], r.ledger.reflected[k],
-                                    r.ledger_stderr.reflected[k]);
-                        if (shown >= 0) {
-                            const Comparison& cmp = comparisons[size_t(shown)];
-                            std::printf(" %10.6f %+10.4f %+7.1f", cmp.model_albedo[k],
-                                        cmp.relative_difference[k], cmp.sigmas[k]);
-                        } else
-                            std::printf(" %10s %10s %7s", "-", "-", "-");
-                        std::printf(" %10.6f", l2plus);
-                        if (transmits)
-                            std::printf(" %10.6f", t);
-                        else
-                            std::printf(" %10s", "-");
-                        std::printf(" %9.2e", r.ledger.lost[k]);
-                        if (c.target.active())
-                            std::printf("  %s: %.2e with %lld rays", r.stop.c_str(),
-                                        r.achieved_error, r.rays);
-                        std::printf("\n");
-                    }
-                }
-            }
-        }
+        for (size_t m = 0; m < c.model.models.size() && shown < 0; ++m)
+            if (c.model.models[m].compared_with == "l1") shown = int(m);
+        CaseObserver observer;
+        observer.started = [&](const std::string& label) { progress.update(done, label); };
+        observer.finished = [&](const IncidenceReport& r) {
+            ++done;
+            if (o.quiet) return;
+            progress.finish();
+            print_incidence(c, r, shown);
+        };
+        observer.warn = [](const std::string& w) {
+            std::fprintf(stderr, "gonio: warning: %s\n", w.c_str());
+        };
+        settings.case_index = ci;
+        const CaseResult result = simulate_case(c, settings, observer);
         progress.finish();
-        writer.write_simulation_case(c, sensor, sim, models.results());
+        t = PhaseTimes::Clock::now();
+        writer.write_simulation_case(c, c.ndf->describe(), *result.sensor, result.simulation,
+                                     result.models);
+        PhaseTimes phases = result.phases;
+        phases.add_since("writing", t);
+        writer.write_timings(c.name, phases.phases());
+        run.merge(phases);
+        t = PhaseTimes::Clock::now();
     }
+    run.add_since("writing", t);
+    run.add("wall", std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count());
+    writer.write_timings("", run.phases());
     writer.commit();
     if (!o.quiet) std::printf("wrote %s\n", output.c_str());
     return 0;

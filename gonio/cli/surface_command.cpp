@@ -91,7 +91,7 @@ int run_surface_command(const SurfaceOptions& o) {
     }
     const SurfaceCache cache = surface_cache(o.no_cache, o.cache_dir);
     for (const CaseConfig& c : cfg.cases) {
-        const auto ndf = make_ndf(c.ndf);
+        const Ndf* ndf = c.ndf.get();
         Progress progress(c.surface.iterations, o.quiet);
         SurfaceOrigin origin;
         const HeightField surface =
@@ -137,11 +137,11 @@ int run_surface_command(const SurfaceOptions& o) {
             std::printf("  loaded %s (edges %s)\n", c.surface.input.c_str(), origin.edges.c_str());
         else if (origin.from_cache)
             std::printf("  reused cached surface %s (generated with %s, %d iterations)\n",
-                        origin.cache_path.c_str(), c.surface.generator.c_str(),
+                        origin.cache_path.c_str(), name_of(c.surface.generator),
                         origin.log.iterations);
         else
             std::printf("  generated with %s in %.2f s (FFTs alone %.2f s), %d iterations%s%s\n",
-                        c.surface.generator.c_str(), origin.log.seconds, origin.log.fft_seconds,
+                        name_of(c.surface.generator), origin.log.seconds, origin.log.fft_seconds,
                         origin.log.iterations,
                         origin.log.converged_early ? " (stopped: converged)" : "",
                         cache.enabled() ? ("; cached as " + origin.cache_path).c_str() : "");

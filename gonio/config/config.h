@@ -1,17 +1,18 @@
 #pragma once
-// A gonio run as described by a TOML file: the cases, each with its NDF, material, spectral
-// channels, incidence sweep, sensor and model settings. load_config validates everything before
-// any work starts; the README's "Configuration" section is the manual of every key.
-#include "gonio/material/fresnel_term.h"
-#include "gonio/model/ashikhmin_model.h"
-#include "gonio/model/cell_integrator.h"
-#include "gonio/model/microfacet_model.h"
-#include "gonio/trace/accuracy_target.h"
-#include "heightfield/ndf/make_ndf.h"
+// A gonio run as described by a TOML file: the cases, each with its distribution (built), its
+// facets, incidence sweep, sensor, models, trace and surface settings. Every component reads its
+// own keys (the registries: heightfield/ndf/ndf_family.h, gonio/material/material_kind.h,
+// gonio/model/model_kind.h, heightfield/surface_spec.h, gonio/trace/gonioreflectometer.h);
+// load_config validates everything before any work starts. `gonio keys` and the README's
+// "Configuration" table are generated from the same declarations.
+#include "gonio/material/material_kind.h"
+#include "gonio/model/model_kind.h"
+#include "gonio/trace/gonioreflectometer.h"
+#include "heightfield/ndf/ndf.h"
 #include "heightfield/surface_spec.h"
 
-#include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -19,48 +20,19 @@ namespace gonio {
 
 struct CaseConfig {
     std::string name;
-    NdfSpec ndf;
-    std::string material_type;   // "mirror" | "dielectric" | "conductor" | "schlick"
-    std::string material_source; // where the optical constants came from (table path), or ""
-    FresnelTerm fresnel;         // specular facets
-    std::vector<double> albedo;  // lambertian and interfaced_lambertian facets: K_d per channel
-    std::vector<double> interface_eta; // interfaced_lambertian: n_i per channel (or one)
-    bool diffuse() const {
-        return material_type == "lambertian" || material_type == "interfaced_lambertian";
-    }
-    int channels() const {
-        if (material_type == "interfaced_lambertian")
-            return int(std::max(albedo.size(), interface_eta.size()));
-        return material_type == "lambertian" ? int(albedo.size()) : fresnel.channels();
-    }
-    std::string material_description() const;
-    std::vector<double> wavelengths_nm; // one per channel; empty when the material is achromatic
-    std::vector<double> theta_i_deg;    // incidence sweep, each in [0, 90)
-    std::vector<double> phi_i_deg;      // each in [0, 360]
-    int sensor_cells = 3240;
-    MaskingForm masking = MaskingForm::height_correlated;
-    CellQuadrature quadrature;
-    SurfaceSpec surface; // [surface]: how the microsurface is made (defaults if absent)
-    // [trace]: the simulation.
-    long long rays = 1 << 20; // per incidence
-    int orders = 10;          // bounce orders stored separately (then one overflow order)
-    int max_bounces = 1000;   // rays still bouncing then are cut (ledger: capped); 1 = L1 only
-    int batches = 32;         // independent batches of the beam, for the standard errors
-    AccuracyTarget target;    // target_error etc.: rounds of `rays` until met or out of budget
-    // [model]: the models evaluated on the sensor cells, by name: "l1" (Model L1, the specular
-    // microfacet BRDF), "il" (interfaced Lambertian, M18), "vcavity" (V-cavity multiple
-    // scattering, M18), "ashikhmin" (A00), "pbrdf" (C19, fitted to the traced surface's slopes).
-    // Empty with evaluate = false.
-    std::vector<std::string> models;
-    int body_points = 32;       // il: Gauss-Legendre nodes per axis of the body integral
-    long long vcavity_rays = 0; // vcavity: paths per incidence (default: trace.rays)
-    std::string ashikhmin_distribution = "ndf"; // "ndf" | "satin" | "velvet"
-    double ashikhmin_sigma = 0.5;               // velvet's width [A00 Eq. 35]
-    AshikhminSettings ashikhmin;
-    double pbrdf_sigma_eps = 0.01; // C19's floor on the lobes' slope deviations
-    bool needs_surface() const {
-        return std::find(models.begin(), models.end(), "pbrdf") != models.end();
-    }
+    std::shared_ptr<const Ndf> ndf; // [ndf], built
+    double ndf_seconds = 0;         // the time it took (tables included)
+    FacetSpec material;             // [material] (and [spectrum])
+    std::vector<double> theta_i_deg; // [beam]: each in [0, 90); empty when not given
+    std::vector<double> phi_i_deg;   // each in [0, 360]
+    int sensor_cells = 3240;         // [sensor]
+    ModelSettings model;             // [model]
+    TraceSettings trace;             // [trace] (seed and stream are set per incidence)
+    SurfaceSpec surface;             // [surface]
+
+    int channels() const { return material.channels; }
+    // A model is fitted to the traced surface (the P-BRDF): it must be made even by `gonio model`.
+    bool needs_surface() const;
 };
 
 struct Config {
@@ -70,6 +42,10 @@ struct Config {
     std::string effective_toml;         // the document after overrides, re-serialised
     std::uint64_t seed = 1;
     std::vector<CaseConfig> cases;
+
+    // Throws ConfigError (naming beam.theta_i) unless every case has an incidence sweep:
+    // `command` is what needs it ("gonio run").
+    void require_beam(const std::string& command) const;
 };
 
 // Reads, applies `overrides` ("key.path=value"), validates. Throws ConfigError.
@@ -78,6 +54,10 @@ Config load_config(const std::string& path, const std::vector<std::string>& over
 Config parse_config(const std::string& text, const std::string& path,
                     const std::vector<std::string>& overrides = {});
 
-const char* masking_name(MaskingForm form);
+// Every key of every section and component: for `gonio keys`, the README table and the checks.
+std::vector<KeyGroup> config_key_groups();
+// The keys as a Markdown table (the README's "Configuration" table) and as plain text.
+std::string keys_markdown();
+std::string keys_text();
 
 } // namespace gonio

@@ -1,6 +1,6 @@
 #include "gonio/config/overrides.h"
 
-#include "gonio/config/config_error.h"
+#include "core/config_error.h"
 
 #include <sstream>
 #include <vector>

@@ -113,7 +113,8 @@ struct ResultWriter::CaseGroup {
     }
 };
 
-ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const BeckersSensor& sensor) {
+ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const std::string& ndf_description,
+                                              const BeckersSensor& sensor) {
     using h5::Handle;
     CaseGroup g;
     Handle gcpl(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, "group creation property list");
@@ -123,13 +124,13 @@ ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const Becke
                      ("create group " + c.name).c_str());
     const hid_t group = g.group;
     h5::write_string_attribute(group, "name", c.name);
-    h5::write_string_attribute(group, "ndf", make_ndf(c.ndf)->describe());
-    h5::write_string_attribute(group, "material", c.material_type);
-    h5::write_string_attribute(group, "fresnel", c.material_description());
-    h5::write_string_attribute(group, "material_source", c.material_source);
-    h5::write_string_attribute(group, "masking", masking_name(c.masking));
-    h5::write_int_attribute(group, "quadrature_points", c.quadrature.points);
-    h5::write_double_attribute(group, "quadrature_tolerance", c.quadrature.rel_tol);
+    h5::write_string_attribute(group, "ndf", ndf_description);
+    h5::write_string_attribute(group, "material", c.material.type);
+    h5::write_string_attribute(group, "fresnel", c.material.description);
+    h5::write_string_attribute(group, "material_source", c.material.source);
+    h5::write_string_attribute(group, "masking", masking_name(c.model.masking));
+    h5::write_int_attribute(group, "quadrature_points", c.model.quadrature.points);
+    h5::write_double_attribute(group, "quadrature_tolerance", c.model.quadrature.rel_tol);
     h5::write_int_attribute(group, "sensor_cells", sensor.cell_count());
     h5::write_string_attribute(group, "sensor", "Beckers & Beckers 2012 equal-area hemisphere");
 
@@ -144,7 +145,7 @@ ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const Becke
     for (size_t k = 0; k < g.nc; ++k) channel[k] = static_cast<double>(k);
     g.cell = h5::write_scale(group, "cell", index, "", "sensor cell index", true);
     g.channel = h5::write_scale(group, "channel", channel, "",
-                                g.nc == 1 && c.wavelengths_nm.empty()
+                                g.nc == 1 && c.material.wavelengths_nm.empty()
                                     ? "spectral channel (achromatic material: one channel)"
                                     : "spectral channel",
                                 true);
@@ -179,8 +180,8 @@ ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const Becke
     coord(
         "projected_solid_angle", [](const SensorCell& s) { return s.projected_solid_angle; }, "sr",
         "integral of cos(theta) over the cell", false);
-    if (!c.wavelengths_nm.empty())
-        g.channel_coords.push_back(h5::write_scale(group, "wavelength", c.wavelengths_nm, "nm",
+    if (!c.material.wavelengths_nm.empty())
+        g.channel_coords.push_back(h5::write_scale(group, "wavelength", c.material.wavelengths_nm, "nm",
                                                    "wavelength of the channel"));
     return g;
 }
@@ -224,19 +225,21 @@ void ResultWriter::write_models(CaseGroup& g, const BeckersSensor& sensor,
     h5::write_string_attribute(g.group, "models", names);
 }
 
-void ResultWriter::write_model_case(const CaseConfig& c, const BeckersSensor& sensor,
+void ResultWriter::write_model_case(const CaseConfig& c, const std::string& ndf_description,
+                                    const BeckersSensor& sensor,
                                     const std::vector<ModelResult>& models) {
-    CaseGroup g = open_case(c, sensor);
+    CaseGroup g = open_case(c, ndf_description, sensor);
     write_models(g, sensor, models);
 }
 
-void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSensor& sensor,
+void ResultWriter::write_simulation_case(const CaseConfig& c, const std::string& ndf_description,
+                                         const BeckersSensor& sensor,
                                          const SimulationResult& sim,
                                          const std::vector<ModelResult>& models) {
-    CaseGroup g = open_case(c, sensor);
+    CaseGroup g = open_case(c, ndf_description, sensor);
     h5::write_string_attribute(g.group, "surface", sim.surface);
-    h5::write_int_attribute(g.group, "rays_per_incidence", c.rays);
-    h5::write_int_attribute(g.group, "max_bounces", c.max_bounces);
+    h5::write_int_attribute(g.group, "rays_per_incidence", c.trace.rays);
+    h5::write_int_attribute(g.group, "max_bounces", c.trace.max_bounces);
     const size_t no = size_t(sim.orders), nt = g.nt, np = g.np, ncell = g.ncell, nc = g.nc;
     std::vector<double> orders(no);
     for (size_t k = 0; k < no; ++k) orders[k] = double(k + 1);
@@ -355,16 +358,16 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
         h5::Handle d = h5::write_dataset(g.group, name, {nt, np}, {1, 1}, v->data(), units, what);
         g.attach_incidence(d);
     }
-    h5::write_int_attribute(g.group, "batches", c.batches);
+    h5::write_int_attribute(g.group, "batches", c.trace.batches);
     std::string stops;
     for (const std::string& s : sim.stop) stops += (stops.empty() ? "" : ",") + s;
     h5::write_string_attribute(g.group, "stop", stops);
-    if (c.target.active()) {
-        h5::write_string_attribute(g.group, "target_quantity", c.target.quantity);
-        h5::write_double_attribute(g.group, "target_relative_error", c.target.relative_error);
-        h5::write_double_attribute(g.group, "target_cell_fraction", c.target.cell_fraction);
-        h5::write_double_attribute(g.group, "target_max_rays", double(c.target.max_rays));
-        h5::write_double_attribute(g.group, "target_max_seconds", c.target.max_seconds);
+    if (c.trace.target.active()) {
+        h5::write_string_attribute(g.group, "target_quantity", name_of(c.trace.target.quantity));
+        h5::write_double_attribute(g.group, "target_relative_error", c.trace.target.relative_error);
+        h5::write_double_attribute(g.group, "target_cell_fraction", c.trace.target.cell_fraction);
+        h5::write_double_attribute(g.group, "target_max_rays", double(c.trace.target.max_rays));
+        h5::write_double_attribute(g.group, "target_max_seconds", c.trace.target.max_seconds);
     }
     write_models(g, sensor, models);
     // Each model against what it models (single scattering or every order), with errors.
@@ -392,6 +395,23 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
                        " per cell (0 where the model is below 1e-12 of its peak)");
         g.per_cell(n + "_ratio_stderr", cmp.ratio_stderr, "1", "standard error of " + n + "_ratio");
     }
+}
+
+void ResultWriter::write_timings(const std::string& case_name,
+                                 const std::vector<std::pair<std::string, double>>& phases) {
+    h5::Handle group;
+    hid_t where = file_;
+    if (!case_name.empty()) {
+        group = h5::Handle(H5Gopen2(file_, case_name.c_str(), H5P_DEFAULT), H5Gclose,
+                           ("open group " + case_name).c_str());
+        where = group;
+    }
+    std::string names;
+    for (const auto& [name, seconds] : phases) {
+        h5::write_double_attribute(where, "phase_" + name + "_seconds", seconds);
+        names += (names.empty() ? "" : ",") + name;
+    }
+    h5::write_string_attribute(where, "phases", names);
 }
 
 void ResultWriter::commit() {

@@ -23,15 +23,21 @@ class ResultWriter {
     ResultWriter& operator=(const ResultWriter&) = delete;
 
     void write_run(const Config& cfg, const std::string& command_line);
-    void write_model_case(const CaseConfig& c, const BeckersSensor& sensor,
-                          const std::vector<ModelResult>& models);
+    // `ndf_description` describes the case's distribution (its Ndf::describe()).
+    void write_model_case(const CaseConfig& c, const std::string& ndf_description,
+                          const BeckersSensor& sensor, const std::vector<ModelResult>& models);
     // The simulated BRDF per order, L1 / L2+ / L-infinity (and the BTDF of a transmissive
     // material on the lower sensor), the ledger, and the models on the same cells, each with
     // its comparison against the simulated quantity it models (albedos, relative difference,
     // per-cell relative L1 distance, ratio map); every simulated figure with its standard error
     // beside it (name_stderr).
-    void write_simulation_case(const CaseConfig& c, const BeckersSensor& sensor,
-                               const SimulationResult& sim, const std::vector<ModelResult>& models);
+    void write_simulation_case(const CaseConfig& c, const std::string& ndf_description,
+                               const BeckersSensor& sensor, const SimulationResult& sim,
+                               const std::vector<ModelResult>& models);
+    // Wall time per phase, as attributes phase_<name>_seconds and the list `phases`: of a case
+    // (its group), or of the whole run (case_name empty: the root).
+    void write_timings(const std::string& case_name,
+                       const std::vector<std::pair<std::string, double>>& phases);
     // Closes the file and renames it to its final path.
     void commit();
 
@@ -39,7 +45,8 @@ class ResultWriter {
 
   private:
     struct CaseGroup;
-    CaseGroup open_case(const CaseConfig& c, const BeckersSensor& sensor);
+    CaseGroup open_case(const CaseConfig& c, const std::string& ndf_description,
+                        const BeckersSensor& sensor);
     void write_models(CaseGroup& g, const BeckersSensor& sensor,
                       const std::vector<ModelResult>& models);
 

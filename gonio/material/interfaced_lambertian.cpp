@@ -1,4 +1,5 @@
 #include "gonio/material/interfaced_lambertian.h"
+#include "gonio/material/material_kind.h"
 
 #include "core/quadrature.h"
 #include "gonio/material/fresnel.h"
@@ -97,4 +98,35 @@ bool InterfacedLambertianFacet::scatter(const Vec3& wi, const Vec3& m, Rng& rng,
     return alive;
 }
 
+} // namespace gonio
+
+namespace gonio {
+namespace {
+const Key kEta = Key::numbers("eta", {1, 100}, "interface index n_i (one or per wavelength)")
+                     .cited("M18 section 3.1");
+const Key kAlbedo = Key::numbers("albedo", {0, 1}, "substrate albedo K_d (one or per wavelength)")
+                        .cited("M18 Eq. 9");
+} // namespace
+const MaterialKind& interfaced_lambertian_kind() {
+    static const MaterialKind k{
+        "interfaced_lambertian", "a Fresnel interface over a Lambertian substrate [M18 section 3.1]",
+        {kAlbedo, kEta}, [](TableReader& r, TableReader& spectrum) {
+            FacetSpec s;
+            s.type = "interfaced_lambertian";
+            s.diffuse = true;
+            s.albedo = read_per_channel(r, kAlbedo, spectrum, s.wavelengths_nm);
+            s.interface_eta = read_per_channel(r, kEta, spectrum, s.wavelengths_nm);
+            s.channels = int(std::max(s.albedo.size(), s.interface_eta.size()));
+            s.description = "interfaced_lambertian(eta=" + list_text(s.interface_eta) +
+                            "; albedo=" + list_text(s.albedo) + ")";
+            const std::vector<double> eta = s.interface_eta, albedo = s.albedo;
+            s.parts = [eta, albedo] {
+                std::vector<std::unique_ptr<Material>> parts;
+                parts.push_back(std::make_unique<InterfacedLambertianFacet>(eta, albedo));
+                return parts;
+            };
+            return s;
+        }};
+    return k;
+}
 } // namespace gonio

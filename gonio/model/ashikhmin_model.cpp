@@ -1,4 +1,5 @@
 #include "gonio/model/ashikhmin_model.h"
+#include "gonio/model/model_kind.h"
 
 #include "core/hemisphere_integral.h"
 
@@ -54,8 +55,6 @@ NormalDensity velvet_density(double sigma) {
 AshikhminModel::AshikhminModel(NormalDensity p, FresnelTerm fresnel, AshikhminSettings s)
     : p_(std::move(p)), fresnel_(std::move(fresnel)), s_(std::move(s)) {
     const int nc = channels();
-    if (s_.diffuse != "none" && s_.diffuse != "dielectric" && s_.diffuse != "metal")
-        throw std::invalid_argument("diffuse must be none, dielectric or metal");
     if (s_.rho_d.size() == 1) s_.rho_d.assign(size_t(nc), s_.rho_d[0]);
     if (int(s_.rho_d.size()) != nc)
         throw std::invalid_argument("rho_d needs one value or one per channel");
@@ -81,7 +80,7 @@ AshikhminModel::AshikhminModel(NormalDensity p, FresnelTerm fresnel, AshikhminSe
     tbb::parallel_for(0, nodes, [&](int n) { g_[size_t(n)] = g_exact(node_direction(n)); });
     diffuse_scale_.assign(size_t(nc), 0.0), diffuse_level_.assign(size_t(nc), 1.0);
     diffuse_albedo_ = s_.rho_d;
-    if (s_.diffuse == "none") return; // R is tabulated for the diffuse term only
+    if (s_.diffuse == AshikhminDiffuse::none) return; // R is tabulated for the diffuse term only
     r_.assign(size_t(nodes) * nc, 0.0);
     tbb::parallel_for(0, nodes * nc, [&](int k) {
         r_[size_t(k)] = reflectance_exact(node_direction(k / nc), k % nc);
@@ -91,7 +90,7 @@ AshikhminModel::AshikhminModel(NormalDensity p, FresnelTerm fresnel, AshikhminSe
     std::vector<double> f0(static_cast<size_t>(nc));
     fresnel_.eval(1.0, f0.data());
     for (int c = 0; c < nc; ++c) {
-        if (s_.diffuse == "metal") diffuse_level_[c] = diffuse_albedo_[c] = f0[c];
+        if (s_.diffuse == AshikhminDiffuse::metal) diffuse_level_[c] = diffuse_albedo_[c] = f0[c];
         const double a = hemisphere_integral(
             [&](const Vec3& k) {
                 return k.z * std::max(0.0, diffuse_level_[c] - reflectance(k, c));
@@ -171,7 +170,7 @@ double AshikhminModel::reflectance_exact(const Vec3& k, int channel) const {
 
 void AshikhminModel::eval_cosine(const Vec3& i, const Vec3& o, double* out) const {
     specular_cosine(i, o, out);
-    if (s_.diffuse == "none" || i.z <= 0 || o.z <= 0) return;
+    if (s_.diffuse == AshikhminDiffuse::none || i.z <= 0 || o.z <= 0) return;
     for (int c = 0; c < channels(); ++c) {
         // A00 Eq. 30 (dielectric) or its metal variant (section 5.1), clamped at 0.
         const double a = std::max(0.0, diffuse_level_[c] - reflectance(i, c));
@@ -180,4 +179,86 @@ void AshikhminModel::eval_cosine(const Vec3& i, const Vec3& o, double* out) cons
     }
 }
 
+} // namespace gonio
+
+namespace gonio {
+namespace {
+const Key kTable = Key::table("ashikhmin", "ashikhmin: its settings (the `model.ashikhmin` keys)")
+                       .note_default("{}");
+const Key kDistribution = Key::string("distribution", {"ndf", "satin", "velvet"},
+                                      "the normals' density: the case's NDF, satin [A00 section "
+                                      "6.3] or velvet [A00 Eq. 35]")
+                              .fallback("ndf");
+const Key kSigma = Key::number("sigma", {0.01, 10}, "velvet's width").fallback(0.5).cited("A00 Eq. 35");
+const Key kCorrelation = Key::number("correlation_width", {0, 90},
+                                     "0: uncorrelated shadowing [A00 Eq. 13]; A00 uses 15 with "
+                                     "Eq. 14")
+                             .in_unit("degrees")
+                             .fallback(0.0);
+const char* const kDiffuseNames[] = {"none", "dielectric", "metal"};
+const Key kDiffuse = Key::string("diffuse", {"none", "dielectric", "metal"},
+                                 "the diffuse term [A00 Eq. 28-30] or its metal variant [A00 "
+                                 "section 5.1]")
+                         .fallback("none");
+const Key kRhoD = Key::numbers("rho_d", {0, 1}, "dielectric diffuse albedo (one or per channel)")
+                      .fallback(std::vector<double>{1.0});
+const Key kThetaNodes =
+    Key::integer("theta_nodes", {3, 1000}, "rows of the g and R tables").fallback(61.0);
+const Key kPhiNodes =
+    Key::integer("phi_nodes", {4, 1000}, "columns of the g and R tables (anisotropic p)")
+        .fallback(32.0);
+const std::vector<Key> kSubKeys = {kDistribution, kSigma,      kCorrelation, kDiffuse,
+                                   kRhoD,         kThetaNodes, kPhiNodes};
+} // namespace
+
+std::vector<KeyGroup> ashikhmin_key_groups() {
+    return {{"model.ashikhmin", "", "the table `model.ashikhmin`", kSubKeys}};
+}
+
+// Held against L1 without a diffuse term, against every order with one; specular facets only.
+const ModelKind& ashikhmin_model_kind() {
+    static const ModelKind k{
+        "ashikhmin", "Ashikhmin-Premoze-Shirley generated BRDF [A00 Eq. 11, 14, 25-30]", {kTable},
+        [](TableReader& r, const ModelContext& c) {
+            if (c.facets.diffuse)
+                r.fail("models", "\"ashikhmin\" is a specular model; for " + c.facets.type +
+                                     " facets use \"il\" (and \"vcavity\")");
+            AshikhminSettings s;
+            std::string distribution = "ndf";
+            double sigma = 0.5;
+            if (r.has(kTable.name)) {
+                TableReader a = r.table(kTable);
+                a.allow_only({&kSubKeys});
+                distribution = a.string(kDistribution);
+                sigma = a.number(kSigma);
+                s.correlation_width = radians(a.number(kCorrelation));
+                const std::string diffuse = a.string(kDiffuse);
+                for (int d = 0; d < 3; ++d)
+                    if (diffuse == kDiffuseNames[d]) s.diffuse = AshikhminDiffuse(d);
+                s.rho_d = a.number_list(kRhoD);
+                if (s.rho_d.size() != 1 && int(s.rho_d.size()) != c.facets.channels)
+                    a.fail("rho_d", "has " + std::to_string(s.rho_d.size()) +
+                                        " values; give one, or one per channel (" +
+                                        std::to_string(c.facets.channels) + ")");
+                s.theta_nodes = static_cast<int>(a.integer(kThetaNodes));
+                s.phi_nodes = static_cast<int>(a.integer(kPhiNodes));
+            }
+            auto density = [distribution, sigma](const Ndf& ndf) {
+                return distribution == "satin"    ? satin_density()
+                       : distribution == "velvet" ? velvet_density(sigma)
+                                                  : density_of(ndf);
+            };
+            ModelChoice m;
+            m.name = "ashikhmin";
+            m.compared_with = s.diffuse != AshikhminDiffuse::none ? "linf" : "l1";
+            m.description = "Ashikhmin-Premoze-Shirley generated BRDF [A00 Eq. 11, 14, 25-30] of " +
+                            density(*c.ndf).description;
+            m.build = [ndf = c.ndf, density, fresnel = c.facets.fresnel,
+                       s](const HeightField*) -> std::unique_ptr<BrdfModel> {
+                return std::make_unique<AshikhminModel>(density(*ndf), fresnel, s);
+            };
+            return m;
+        }};
+    return k;
+}
 } // namespace gonio

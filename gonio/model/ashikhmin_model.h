@@ -34,9 +34,13 @@ NormalDensity satin_density();
 // A00 Eq. 35: velvet, the "inverse Gaussian" c exp(-cot^2 theta / sigma^2).
 NormalDensity velvet_density(double sigma);
 
+// The diffuse term that takes what the specular part leaves: none, a dielectric's [A00 Eq. 28-30]
+// or a metal's [A00 section 5.1].
+enum class AshikhminDiffuse { none, dielectric, metal };
+
 struct AshikhminSettings {
-    double correlation_width = 0;         // radians; 0: uncorrelated [A00 Eq. 13]
-    std::string diffuse = "none";         // "none" | "dielectric" [A00 Eq. 30] | "metal" [A00 5.1]
+    double correlation_width = 0; // radians; 0: uncorrelated [A00 Eq. 13]
+    AshikhminDiffuse diffuse = AshikhminDiffuse::none;
     std::vector<double> rho_d{1.0};       // dielectric diffuse albedo, one or one per channel
     int theta_nodes = 61, phi_nodes = 32; // table resolution (phi only for anisotropic p)
 };

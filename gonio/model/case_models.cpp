@@ -1,7 +1,6 @@
 #include "gonio/model/case_models.h"
 
 #include "core/batch_means.h"
-#include "gonio/material/facet_materials.h"
 #include "gonio/model/ashikhmin_model.h"
 #include "gonio/model/cell_integrator.h"
 #include "gonio/model/interfaced_lambertian_model.h"
@@ -14,49 +13,20 @@
 
 namespace gonio {
 
-namespace {
-std::vector<double> interface_eta(const CaseConfig& c) {
-    return c.material_type == "lambertian" ? std::vector<double>{1.0} : c.interface_eta;
-}
-} // namespace
-
 CaseModels::CaseModels(const CaseConfig& c, const Ndf& ndf, const HeightField* surface)
     : c_(c), ndf_(ndf) {
-    for (const std::string& name : c.models) {
+    for (const ModelChoice& choice : c.model.models) {
         ModelResult r;
-        r.name = name;
-        r.compared_with = "l1";
-        if (name == "l1") {
-            analytic_.push_back(std::make_unique<MicrofacetModel>(ndf, c.fresnel, c.masking));
-            r.description = "Model L1: the specular microfacet BRDF [R19 Eq. 2], masking " +
-                            std::string(masking_name(c.masking));
-        } else if (name == "il") {
-            analytic_.push_back(std::make_unique<InterfacedLambertianModel>(
-                ndf, interface_eta(c), c.albedo, c.masking, c.body_points));
-            r.description = "interfaced Lambertian microfacets, single scattering f_s + f_b "
-                            "[M18 Eq. 12-13], masking " +
-                            std::string(masking_name(c.masking));
-        } else if (name == "ashikhmin") {
-            NormalDensity p = c.ashikhmin_distribution == "satin" ? satin_density()
-                              : c.ashikhmin_distribution == "velvet"
-                                  ? velvet_density(c.ashikhmin_sigma)
-                                  : density_of(ndf);
-            r.description = "Ashikhmin-Premoze-Shirley generated BRDF [A00 Eq. 11, 14, 25-30] of " +
-                            p.description;
-            analytic_.push_back(
-                std::make_unique<AshikhminModel>(std::move(p), c.fresnel, c.ashikhmin));
-            if (c.ashikhmin.diffuse != "none") r.compared_with = "linf";
-        } else if (name == "pbrdf") {
-            if (!surface) throw std::logic_error("the P-BRDF is fitted to the case's surface");
-            analytic_.push_back(std::make_unique<PBrdfModel>(
-                fit_slope_lobes(*surface, c.pbrdf_sigma_eps), c.fresnel));
-            r.description = "Chermain et al.'s P-BRDF [C19 Eq. 7, 9, 13-17]: one non-centred "
-                            "Beckmann lobe per texel of the surface, the whole patch as footprint";
-        } else { // vcavity
+        r.name = choice.name;
+        r.compared_with = choice.compared_with;
+        r.description = choice.description;
+        if (choice.needs_surface && !surface)
+            throw std::logic_error("model " + choice.name + " is fitted to the case's surface");
+        if (choice.build) {
+            analytic_.push_back(choice.build(surface));
+        } else { // a Monte Carlo estimator: the V-cavity, on the case's (opaque) facets
             analytic_.push_back(nullptr);
-            facet_ = std::move(facet_materials(c)[0]); // opaque: one part
-            r.compared_with = "linf";
-            r.description = "V-cavity multiple scattering, every order [M18 section 3.3]";
+            facet_ = std::move(c.material.parts()[0]);
         }
         results_.push_back(std::move(r));
     }
@@ -78,13 +48,13 @@ std::vector<std::vector<double>> CaseModels::evaluate(const Vec3& wi, const Beck
         std::vector<double> energy;
         ModelMap& last = last_[k];
         if (analytic_[k]) {
-            energy = model_cell_energy(*analytic_[k], wi, sensor, c_.quadrature);
-            last.relative_tolerance = c_.quadrature.rel_tol;
+            energy = model_cell_energy(*analytic_[k], wi, sensor, c_.model.quadrature);
+            last.relative_tolerance = c_.model.quadrature.rel_tol;
         } else {
             TraceSettings st;
-            st.rays = c_.vcavity_rays;
+            st.rays = c_.model.models[k].rays;
             st.orders = 2; // f1, f2, then every higher order together [M18 Fig. 9]
-            st.max_bounces = c_.max_bounces;
+            st.max_bounces = c_.trace.max_bounces;
             st.seed = seed, st.stream = stream;
             const TraceResult v = vcavity_estimate(ndf_, *facet_, sensor, wi, st);
             const size_t per_order = size_t(sensor.cell_count()) * nc;

@@ -1,4 +1,5 @@
 #include "gonio/model/interfaced_lambertian_model.h"
+#include "gonio/model/model_kind.h"
 
 #include "core/quadrature.h"
 
@@ -90,4 +91,37 @@ void InterfacedLambertianModel::eval_cosine(const Vec3& i, const Vec3& o, double
     for (int c = 0; c < nc; ++c) out[c] += b[c];
 }
 
+} // namespace gonio
+
+namespace gonio {
+namespace {
+const Key kBodyPoints = Key::integer("body_points", {4, 256},
+                                     "il: Gauss-Legendre nodes per axis of the body integral over m")
+                            .fallback(32.0)
+                            .cited("M18 Eq. 13");
+}
+const ModelKind& il_model_kind() {
+    static const ModelKind k{
+        "il", "interfaced Lambertian microfacets, single scattering f_s + f_b [M18 Eq. 12-13]",
+        {kBodyPoints}, [](TableReader& r, const ModelContext& c) {
+            if (!c.facets.diffuse)
+                r.fail("models", "\"il\" needs lambertian or interfaced_lambertian facets, not " +
+                                     c.facets.type);
+            const int body_points = static_cast<int>(r.integer(kBodyPoints));
+            ModelChoice m;
+            m.name = "il";
+            m.compared_with = "l1";
+            m.description = "interfaced Lambertian microfacets, single scattering f_s + f_b "
+                            "[M18 Eq. 12-13], masking " +
+                            std::string(masking_name(c.masking));
+            m.build = [ndf = c.ndf, eta = c.facets.interface_eta, albedo = c.facets.albedo,
+                       masking = c.masking,
+                       body_points](const HeightField*) -> std::unique_ptr<BrdfModel> {
+                return std::make_unique<InterfacedLambertianModel>(*ndf, eta, albedo, masking,
+                                                                   body_points);
+            };
+            return m;
+        }};
+    return k;
+}
 } // namespace gonio

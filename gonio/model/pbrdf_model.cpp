@@ -1,4 +1,5 @@
 #include "gonio/model/pbrdf_model.h"
+#include "gonio/model/model_kind.h"
 
 #include <algorithm>
 #include <cmath>
@@ -148,4 +149,35 @@ void PBrdfModel::eval_cosine(const Vec3& i, const Vec3& o, double* out) const {
     for (int c = 0; c < nc; ++c) out[c] *= geometric;
 }
 
+} // namespace gonio
+
+namespace gonio {
+namespace {
+const Key kSigmaEps = Key::number("pbrdf_sigma_eps", {1e-4, 1},
+                                  "pbrdf: the floor σ_ε on each lobe's slope deviations")
+                          .fallback(0.01)
+                          .cited("C19 section 3.2");
+}
+// Fitted to the traced surface's slopes, so it needs the surface; specular facets only.
+const ModelKind& pbrdf_model_kind() {
+    static const ModelKind k{
+        "pbrdf", "Chermain et al.'s P-BRDF fitted to the surface's slopes [C19 Eq. 7]", {kSigmaEps},
+        [](TableReader& r, const ModelContext& c) {
+            if (c.facets.diffuse)
+                r.fail("models", "\"pbrdf\" is a specular model; for " + c.facets.type +
+                                     " facets use \"il\" (and \"vcavity\")");
+            ModelChoice m;
+            m.name = "pbrdf";
+            m.compared_with = "l1";
+            m.needs_surface = true;
+            m.description = "Chermain et al.'s P-BRDF [C19 Eq. 7, 9, 13-17]: one non-centred "
+                            "Beckmann lobe per texel of the surface, the whole patch as footprint";
+            m.build = [sigma_eps = r.number(kSigmaEps), fresnel = c.facets.fresnel](
+                          const HeightField* surface) -> std::unique_ptr<BrdfModel> {
+                return std::make_unique<PBrdfModel>(fit_slope_lobes(*surface, sigma_eps), fresnel);
+            };
+            return m;
+        }};
+    return k;
+}
 } // namespace gonio

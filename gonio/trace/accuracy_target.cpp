@@ -8,20 +8,65 @@
 
 namespace gonio {
 
-const std::vector<std::string>& accuracy_target_quantities() {
-    static const std::vector<std::string> q{"l1_albedo", "l2plus_albedo", "linf_albedo", "l1_cells",
-                                            "linf_cells"};
-    return q;
+namespace {
+const char* const kQuantityNames[] = {"l1_albedo", "l2plus_albedo", "linf_albedo", "l1_cells",
+                                      "linf_cells"};
+const Key kTargetError = Key::number("target_error", {0, 1, true, false},
+                                     "an accuracy target instead of a ray count: rounds of "
+                                     "`trace.rays` are added until the target quantity's relative "
+                                     "standard error is at most this")
+                             .note_default("—");
+const Key kTarget =
+    Key::string("target", {kQuantityNames, kQuantityNames + 5},
+                "the target quantity (the worst channel; `*_cells`: the worst cell whose BRDF is at "
+                "least `trace.target_cell_fraction` of the brightest)")
+        .fallback("l1_albedo");
+const Key kCellFraction =
+    Key::number("target_cell_fraction", {0, 1, true, false}, "`*_cells` targets: the cells that count")
+        .fallback(0.1);
+const Key kMaxRays = Key::integer("max_rays", {1, 1e13},
+                                  "the target's ray budget: the run stops when the next round would "
+                                  "exceed it, and says so")
+                         .fallback(1e10)
+                         .noting("≥ `trace.rays`");
+const Key kMaxSeconds = Key::number("max_seconds", {0, 1e7, true, false},
+                                    "the target's time budget (the run then depends on the machine)")
+                            .fallback(3600.0);
+} // namespace
+
+const char* name_of(TargetQuantity q) { return kQuantityNames[int(q)]; }
+
+std::vector<Key> accuracy_target_keys() {
+    return {kTargetError, kTarget, kCellFraction, kMaxRays, kMaxSeconds};
+}
+
+AccuracyTarget read_accuracy_target(TableReader& r, long long rays) {
+    AccuracyTarget t;
+    const std::string quantity = r.string(kTarget);
+    for (int k = 0; k < 5; ++k)
+        if (quantity == kQuantityNames[k]) t.quantity = TargetQuantity(k);
+    t.cell_fraction = r.number(kCellFraction);
+    t.max_rays = r.integer(kMaxRays);
+    t.max_seconds = r.number(kMaxSeconds);
+    if (!r.has(kTargetError.name)) {
+        for (const Key* k : {&kTarget, &kCellFraction, &kMaxRays, &kMaxSeconds})
+            if (r.has(k->name)) r.fail(k->name, "applies only with trace.target_error");
+        return t;
+    }
+    t.relative_error = r.number(kTargetError);
+    if (t.max_rays < rays)
+        r.fail("max_rays", "must be at least trace.rays (" + std::to_string(rays) +
+                               "), the rays of one round");
+    return t;
 }
 
 double relative_error_of(const TraceResult& r, const AccuracyTarget& t,
                          const BeckersSensor& sensor) {
     const int B = r.batches, nc = r.channels, no = r.orders;
-    const bool first_only = t.quantity == "l1_albedo" || t.quantity == "l1_cells";
-    const int from = t.quantity == "l2plus_albedo" ? 1 : 0, to = first_only ? 1 : no;
-    const bool albedo = t.quantity.find("albedo") != std::string::npos;
-    if (!albedo && t.quantity != "l1_cells" && t.quantity != "linf_cells")
-        throw std::invalid_argument("unknown accuracy target quantity " + t.quantity);
+    using Q = TargetQuantity;
+    const bool first_only = t.quantity == Q::l1_albedo || t.quantity == Q::l1_cells;
+    const int from = t.quantity == Q::l2plus_albedo ? 1 : 0, to = first_only ? 1 : no;
+    const bool albedo = t.quantity != Q::l1_cells && t.quantity != Q::linf_cells;
     // Per batch, the quantity's albedos [channel] or cell energies [cell][channel].
     const std::vector<double> x =
         sum_orders(albedo ? r.ledger_batches.reflected : r.energy_batches, B, no, from, to);

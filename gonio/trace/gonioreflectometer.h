@@ -29,6 +29,10 @@ struct TraceSettings {
     AccuracyTarget target;    // when active, `rays` is one round and rounds are added
 };
 
+// The [trace] table: everything above but the seed, the stream and the block size.
+TraceSettings read_trace(TableReader& r);
+std::vector<KeyGroup> trace_key_groups();
+
 TraceResult trace_incidence(const Scene& scene, const Material& material,
                             const BeckersSensor& sensor, const Vec3& wi,
                             const TraceSettings& settings);

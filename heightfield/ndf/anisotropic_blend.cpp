@@ -1,4 +1,5 @@
 #include "heightfield/ndf/anisotropic_blend.h"
+#include "heightfield/ndf/ndf_family.h"
 
 #include "core/catmull_rom.h"
 #include "core/quadrature.h"
@@ -160,4 +161,30 @@ double AnisotropicBlend::widest_feature() const {
     return std::max(x_.ndf->widest_feature(), y_.ndf->widest_feature());
 }
 
+} // namespace gonio
+
+namespace gonio {
+namespace {
+const Key kX = Key::table("x", "the isotropic curve along φ = 0").cited("R19 Eq. 10");
+const Key kY = Key::table("y", "the isotropic curve along φ = 90°").cited("R19 Eq. 10");
+} // namespace
+const NdfFamily& blend_family() {
+    static const NdfFamily f{
+        "blend", "anisotropic blend of two isotropic curves [R19 Eq. 10]", {kX, kY},
+        [](TableReader& r, int depth) -> std::unique_ptr<Ndf> {
+            std::unique_ptr<Ndf> axes[2];
+            for (int k = 0; k < 2; ++k) {
+                const Key& key = k ? kY : kX;
+                const NdfFamily* family = nullptr;
+                axes[k] = read_ndf(r.table(key), depth + 1, &family);
+                double ax = 1, ay = 1;
+                const bool one_alpha = !axes[k]->slope_stretch(ax, ay) || ax == ay;
+                if (!family->curve || !one_alpha)
+                    r.fail(key.name, "must be an isotropic curve (one alpha; not a blend, mixture "
+                                     "or table) [R19 Eq. 10]");
+            }
+            return std::make_unique<AnisotropicBlend>(std::move(axes[0]), std::move(axes[1]));
+        }};
+    return f;
+}
 } // namespace gonio

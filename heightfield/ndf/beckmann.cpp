@@ -1,4 +1,5 @@
 #include "heightfield/ndf/beckmann.h"
+#include "heightfield/ndf/ndf_family.h"
 
 #include "core/special_functions.h"
 
@@ -61,4 +62,16 @@ void Beckmann::sample_visible_slope(double c, double u1, double u2, double& x, d
     x = t;
 }
 
+} // namespace gonio
+
+namespace gonio {
+const NdfFamily& beckmann_family() {
+    static const NdfFamily f{"beckmann", "Beckmann: Gaussian slopes [R19 section 2.1]",
+                             roughness_keys(), [](TableReader& r, int) -> std::unique_ptr<Ndf> {
+                                 const Roughness a = read_roughness(r);
+                                 return std::make_unique<Beckmann>(a.x, a.y);
+                             },
+                             true};
+    return f;
+}
 } // namespace gonio

@@ -13,6 +13,7 @@ class Beckmann final : public ShapeInvariantNdf {
     Beckmann(double alpha_x, double alpha_y) : ShapeInvariantNdf(alpha_x, alpha_y) {}
     explicit Beckmann(double alpha) : Beckmann(alpha, alpha) {}
     std::string name() const override { return "beckmann"; }
+    bool gaussian_slopes(double& ax, double& ay) const override { return slope_stretch(ax, ay); }
 
   protected:
     double d_unit(double r2, double cos2) const override;

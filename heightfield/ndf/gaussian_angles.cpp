@@ -1,4 +1,5 @@
 #include "heightfield/ndf/gaussian_angles.h"
+#include "heightfield/ndf/ndf_family.h"
 
 #include "core/quadrature.h"
 
@@ -45,4 +46,28 @@ GaussianAngles::GaussianAngles(double sigma, double theta_max)
     : RadialNdf(1.0, 1.0, gaussian_profile(sigma, theta_max)), sigma_(sigma),
       theta_max_(theta_max) {}
 
+} // namespace gonio
+
+namespace gonio {
+namespace {
+// Degrees in the config, like every angle; the range is the constructor's in radians.
+const Key kSigma = Key::number("sigma", {0.0573, 85.94}, "σ of the Gaussian of angles")
+                       .in_unit("degrees")
+                       .cited("M18 Eq. 14");
+const Key kThetaMax =
+    Key::number("theta_max", {60, 89.999},
+                "where the Gaussian is cut (uncut, its 1/cos θ makes Smith's Λ infinite)")
+        .in_unit("degrees")
+        .fallback(89.9);
+} // namespace
+const NdfFamily& gaussian_family() {
+    static const NdfFamily f{"gaussian", "Gaussian of angles [M18 Eq. 14]", {kSigma, kThetaMax},
+                             [](TableReader& r, int) -> std::unique_ptr<Ndf> {
+                                 const double sigma = radians(r.number(kSigma));
+                                 return std::make_unique<GaussianAngles>(
+                                     sigma, radians(r.number(kThetaMax)));
+                             },
+                             true};
+    return f;
+}
 } // namespace gonio

@@ -1,4 +1,5 @@
 #include "heightfield/ndf/generalized_normal.h"
+#include "heightfield/ndf/ndf_family.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -25,4 +26,28 @@ RadialProfile generalized_normal_profile(double p) {
 GeneralizedNormal::GeneralizedNormal(double alpha_x, double alpha_y, double p)
     : RadialNdf(alpha_x, alpha_y, generalized_normal_profile(p)), p_(p) {}
 
+} // namespace gonio
+
+namespace gonio {
+namespace {
+const Key kP = Key::number("p", {GeneralizedNormal::kPMin, GeneralizedNormal::kPMax},
+                           "shape p (2 is Beckmann / Student's t)")
+                   .cited("R19 section 2.1");
+}
+const NdfFamily& generalized_normal_family() {
+    static const NdfFamily f{"generalized_normal", "generalised normal slopes [R19 section 2.1]",
+                             [] {
+                                 std::vector<Key> k{kP};
+                                 k.insert(k.end(), roughness_keys().begin(),
+                                          roughness_keys().end());
+                                 return k;
+                             }(),
+                             [](TableReader& r, int) -> std::unique_ptr<Ndf> {
+                                 const double p = r.number(kP);
+                                 const Roughness a = read_roughness(r);
+                                 return std::make_unique<GeneralizedNormal>(a.x, a.y, p);
+                             },
+                             true};
+    return f;
+}
 } // namespace gonio

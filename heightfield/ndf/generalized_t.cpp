@@ -1,4 +1,5 @@
 #include "heightfield/ndf/generalized_t.h"
+#include "heightfield/ndf/ndf_family.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -35,4 +36,34 @@ RadialProfile generalized_t_profile(double p, double q) {
 GeneralizedT::GeneralizedT(double alpha_x, double alpha_y, double p, double q)
     : RadialNdf(alpha_x, alpha_y, generalized_t_profile(p, q)), p_(p), q_(q) {}
 
+} // namespace gonio
+
+namespace gonio {
+namespace {
+const Key kP = Key::number("p", {GeneralizedT::kPMin, GeneralizedT::kPMax},
+                           "shape p (2 is Beckmann / Student's t)")
+                   .cited("R19 section 2.1");
+const Key kQ = Key::number("q", {0, GeneralizedT::kQMax, true, false},
+                           "tail q (p = 2: Student's t with γ = q + 1; q → ∞: generalised normal)")
+                   .noting("p q ≥ 2");
+} // namespace
+const NdfFamily& generalized_t_family() {
+    static const NdfFamily f{"generalized_t", "generalised t slopes [R19 section 2.1]",
+                             [] {
+                                 std::vector<Key> k{kP, kQ};
+                                 k.insert(k.end(), roughness_keys().begin(),
+                                          roughness_keys().end());
+                                 return k;
+                             }(),
+                             [](TableReader& r, int) -> std::unique_ptr<Ndf> {
+                                 const double p = r.number(kP), q = r.number(kQ);
+                                 if (!(p * q >= 2))
+                                     r.fail("q", "p q must be >= 2 (below 2, D diverges at the "
+                                                 "horizon)");
+                                 const Roughness a = read_roughness(r);
+                                 return std::make_unique<GeneralizedT>(a.x, a.y, p, q);
+                             },
+                             true};
+    return f;
+}
 } // namespace gonio

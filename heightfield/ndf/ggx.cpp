@@ -1,4 +1,5 @@
 #include "heightfield/ndf/ggx.h"
+#include "heightfield/ndf/ndf_family.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,4 +39,16 @@ void Ggx::sample_visible_slope(double c, double u1, double u2, double& x, double
     y = -n.y / nz;
 }
 
+} // namespace gonio
+
+namespace gonio {
+const NdfFamily& ggx_family() {
+    static const NdfFamily f{"ggx", "GGX (Trowbridge-Reitz) [R19 section 2.1]", roughness_keys(),
+                             [](TableReader& r, int) -> std::unique_ptr<Ndf> {
+                                 const Roughness a = read_roughness(r);
+                                 return std::make_unique<Ggx>(a.x, a.y);
+                             },
+                             true};
+    return f;
+}
 } // namespace gonio

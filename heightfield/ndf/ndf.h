@@ -45,6 +45,12 @@ class Ndf {
         (void)alpha_x, (void)alpha_y;
         return false;
     }
+    // True when the slopes are a centred 2-D Gaussian (Beckmann), with its roughness: what a
+    // random-phase Gaussian surface (the heitz generator) can follow.
+    virtual bool gaussian_slopes(double& alpha_x, double& alpha_y) const {
+        (void)alpha_x, (void)alpha_y;
+        return false;
+    }
 
     // G1(v) = 1 / (1 + Lambda(v)) [R19 Eq. 8].
     double G1(const Vec3& v) const;

@@ -1,4 +1,6 @@
 #include "heightfield/ndf/piecewise_linear.h"
+#include "core/number_text.h"
+#include "heightfield/ndf/ndf_family.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,11 +39,11 @@ RadialProfile profile(ControlPoints& p, std::string name, std::string parameters
     validate(p);
     if (parameters.empty()) { // user-given points: all of them, so that describe() is unique
         std::ostringstream s;
-        s.precision(17);
         s << "theta_deg=[";
-        for (size_t i = 0; i < p.theta.size(); ++i) s << (i ? ", " : "") << p.theta[i] * 180 / kPi;
+        for (size_t i = 0; i < p.theta.size(); ++i)
+            s << (i ? ", " : "") << shortest(p.theta[i] * 180 / kPi);
         s << "], value=[";
-        for (size_t i = 0; i < p.value.size(); ++i) s << (i ? ", " : "") << p.value[i];
+        for (size_t i = 0; i < p.value.size(); ++i) s << (i ? ", " : "") << shortest(p.value[i]);
         s << "]";
         parameters = s.str();
     }
@@ -109,4 +111,47 @@ ControlPoints PiecewiseLinearNdf::sampled_from(const Ndf& source, int intervals)
     return p;
 }
 
+} // namespace gonio
+
+namespace gonio {
+namespace {
+const Key kTheta = Key::numbers("theta", {0, 90}, "control points' angles, from 0 to 90, increasing")
+                       .in_unit("degrees")
+                       .cited("R19 Eq. 11");
+const Key kValue = Key::numbers("value", {0, 1e300},
+                                "D_iso at the control points (any scale: normalised by Eq. 12)")
+                       .cited("R19 Eq. 11-12");
+const Key kSource = Key::table("source", "instead of theta/value: a distribution to sample along "
+                                         "φ = 0");
+const Key kPoints = Key::integer("points", {3, 4097},
+                                 "with `source`: control points uniform in θ")
+                        .fallback(65.0);
+} // namespace
+const NdfFamily& piecewise_linear_family() {
+    static const NdfFamily f{
+        "piecewise_linear", "piecewise-linear isotropic curve [R19 Eq. 11-12]",
+        {kTheta, kValue, kSource, kPoints},
+        [](TableReader& r, int depth) -> std::unique_ptr<Ndf> {
+            if (r.has("source")) {
+                const auto source = read_ndf(r.table(kSource), depth + 1);
+                const int intervals = int(r.integer(kPoints)) - 1;
+                return std::make_unique<PiecewiseLinearNdf>(
+                    PiecewiseLinearNdf::sampled_from(*source, intervals), "piecewise_linear",
+                    "points=" + std::to_string(intervals + 1) + " from " + source->describe());
+            }
+            if (!r.has("theta"))
+                r.fail("theta", "missing: give theta (degrees, 0 to 90) and value, or a source "
+                                "distribution to sample");
+            ControlPoints points;
+            for (double t : r.number_list(kTheta)) points.theta.push_back(radians(t));
+            points.value = r.number_list(kValue);
+            try {
+                return std::make_unique<PiecewiseLinearNdf>(std::move(points));
+            } catch (const std::invalid_argument& e) {
+                r.fail("theta", e.what());
+            }
+        },
+        true};
+    return f;
+}
 } // namespace gonio

@@ -1,4 +1,5 @@
 #include "heightfield/ndf/radial_ndf.h"
+#include "core/number_text.h"
 
 #include "core/catmull_rom.h"
 #include "core/quadrature.h"
@@ -17,9 +18,8 @@ constexpr int kLambdaIntervals = 1024; // polar angles of the Lambda table, minu
 
 std::string parameter_list(std::initializer_list<std::pair<const char*, double>> values) {
     std::ostringstream s;
-    s.precision(17);
     for (const auto& [name, value] : values)
-        s << (s.tellp() > 0 ? ", " : "") << name << "=" << value;
+        s << (s.tellp() > 0 ? ", " : "") << name << "=" << shortest(value);
     return s.str();
 }
 
@@ -57,8 +57,7 @@ RadialNdf::RadialNdf(double alpha_x, double alpha_y, RadialProfile profile)
 
 std::string RadialNdf::describe() const {
     std::ostringstream s;
-    s.precision(17);
-    s << name() << "(alpha_x=" << alpha_x() << ", alpha_y=" << alpha_y();
+    s << name() << "(alpha_x=" << shortest(alpha_x()) << ", alpha_y=" << shortest(alpha_y());
     if (!profile_.parameters.empty()) s << ", " << profile_.parameters;
     s << ")";
     return s.str();

@@ -1,4 +1,5 @@
 #include "heightfield/ndf/shape_invariant_ndf.h"
+#include "core/number_text.h"
 
 #include <cmath>
 #include <limits>
@@ -49,8 +50,7 @@ Vec3 ShapeInvariantNdf::sample_visible(const Vec3& v, double u1, double u2) cons
 
 std::string ShapeInvariantNdf::describe() const {
     std::ostringstream s;
-    s.precision(17);
-    s << name() << "(alpha_x=" << ax_ << ", alpha_y=" << ay_ << ")";
+    s << name() << "(alpha_x=" << shortest(ax_) << ", alpha_y=" << shortest(ay_) << ")";
     return s.str();
 }
 

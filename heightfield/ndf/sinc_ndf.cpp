@@ -1,4 +1,6 @@
 #include "heightfield/ndf/sinc_ndf.h"
+#include "core/number_text.h"
+#include "heightfield/ndf/ndf_family.h"
 
 #include <cmath>
 #include <sstream>
@@ -24,8 +26,7 @@ ControlPoints SincNdf::curve(double k, double floor, int intervals) {
 namespace {
 std::string parameters(double k, double floor, int intervals) {
     std::ostringstream s;
-    s.precision(17);
-    s << "k=" << k << ", floor=" << floor << ", points=" << intervals + 1;
+    s << "k=" << shortest(k) << ", floor=" << shortest(floor) << ", points=" << intervals + 1;
     return s.str();
 }
 } // namespace
@@ -33,4 +34,26 @@ std::string parameters(double k, double floor, int intervals) {
 SincNdf::SincNdf(double k, double floor, int intervals)
     : PiecewiseLinearNdf(curve(k, floor, intervals), "sinc", parameters(k, floor, intervals)) {}
 
+} // namespace gonio
+
+namespace gonio {
+namespace {
+const Key kK = Key::number("k", {0, 200, true, false}, "D ∝ sinc²(kθ) + floor")
+                   .in_unit("per rad")
+                   .cited("R19 section 5.1");
+const Key kFloor = Key::number("floor", {0, 1}, "sinc: floor, relative to the peak").fallback(0.0);
+const Key kPoints = Key::integer("points", {9, 4097}, "sinc: control points of the curve")
+                        .fallback(129.0);
+} // namespace
+const NdfFamily& sinc_family() {
+    static const NdfFamily f{"sinc", "sinc² multi-lobe curve [R19 section 5.1, Fig. 10]",
+                             {kK, kFloor, kPoints},
+                             [](TableReader& r, int) -> std::unique_ptr<Ndf> {
+                                 const double k = r.number(kK), floor = r.number(kFloor);
+                                 return std::make_unique<SincNdf>(k, floor,
+                                                                  int(r.integer(kPoints)) - 1);
+                             },
+                             true};
+    return f;
+}
 } // namespace gonio

@@ -1,4 +1,6 @@
 #include "heightfield/ndf/tabulated_ndf.h"
+#include "heightfield/ndf/ndf_family.h"
+#include "heightfield/exr_io.h"
 
 #include "core/quadrature.h"
 #include "core/random.h"
@@ -316,4 +318,54 @@ double TabulatedNdf::widest_feature() const {
     return std::max(dt_, std::sqrt(sum / cdf_cos_.back()));
 }
 
+} // namespace gonio
+
+namespace gonio {
+namespace {
+const Key kTableFile = Key::path("file", "a D(θ, φ) table: text or `.h5` (README, below)");
+const Key kMapFile = Key::path("file", "an EXR height map (or normal map) whose facet NDF is used");
+const Key kThetaIntervals =
+    Key::integer("theta_intervals", {2, 900}, "height_map: the facet table's θ intervals (2°)")
+        .fallback(45.0);
+const Key kPhiCount =
+    Key::integer("phi_count", {1, 3600}, "height_map: the facet table's φ columns (10°)")
+        .fallback(36.0);
+
+// A table or map that does not read is reported at its key, before any work.
+template <class F> auto reading(TableReader& r, const Key& key, F&& f) -> decltype(f()) {
+    try {
+        return f();
+    } catch (const std::exception& e) {
+        r.fail(key.name, e.what());
+    }
+}
+} // namespace
+
+const NdfFamily& tabulated_family() {
+    static const NdfFamily f{"tabulated", "a measured D(θ, φ) table", {kTableFile},
+                             [](TableReader& r, int) -> std::unique_ptr<Ndf> {
+                                 const std::string file = r.path(kTableFile);
+                                 return reading(r, kTableFile, [&] {
+                                     return std::make_unique<TabulatedNdf>(read_ndf_table(file),
+                                                                           file);
+                                 });
+                             }};
+    return f;
+}
+
+const NdfFamily& height_map_family() {
+    static const NdfFamily f{
+        "height_map", "the facet NDF of a height map", {kMapFile, kThetaIntervals, kPhiCount},
+        [](TableReader& r, int) -> std::unique_ptr<Ndf> {
+            const std::string file = r.path(kMapFile);
+            const int theta_intervals = int(r.integer(kThetaIntervals));
+            const int phi_count = int(r.integer(kPhiCount));
+            return reading(r, kMapFile, [&] {
+                return std::make_unique<TabulatedNdf>(
+                    facet_ndf_table(read_height_exr(file), theta_intervals, phi_count), file,
+                    "height_map");
+            });
+        }};
+    return f;
+}
 } // namespace gonio

@@ -1,4 +1,4 @@
-#include "gonio/config/config_error.h"
+#include "core/config_error.h"
 
 #include <algorithm>
 #include <vector>

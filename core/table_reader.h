@@ -4,6 +4,8 @@
 // A case's section (e.g. [[case]] ... ndf = {...}) is read first and the file's top-level section
 // of the same name supplies defaults. Every key read is marked as used; UsageTracker then reports
 // any key no case used, so a misspelled or misplaced key never passes silently.
+#include "core/config_key.h"
+
 #include <optional>
 #include <set>
 #include <string>
@@ -12,13 +14,6 @@
 
 namespace gonio {
 
-// Closed/open numeric interval used in checks and in the error text ("allowed (0, 100]").
-struct Range {
-    double lo, hi;
-    bool lo_open = false, hi_open = false;
-    bool contains(double v) const;
-    std::string describe() const;
-};
 
 class UsageTracker {
   public:
@@ -62,6 +57,22 @@ class TableReader {
     std::vector<double> number_list(const std::string& key, const Range& range,
                                     std::optional<std::vector<double>> fallback = std::nullopt);
     bool is_string(const std::string& key) const;
+
+    // Reads of a declared key: its range or choices, its default (a key without one is required).
+    double number(const Key& key);
+    long long integer(const Key& key);
+    std::vector<double> number_list(const Key& key);
+    std::string string(const Key& key);
+    std::vector<std::string> string_list(const Key& key);
+    bool boolean(const Key& key);
+    // A path relative to the config file's directory; the file must exist.
+    std::string path(const Key& key);
+    TableReader table(const Key& key) { return table(key.name); }
+    std::vector<TableReader> table_list(const Key& key) { return table_list(key.name); }
+    // Rejects keys of this reader's own section that none of `groups` declares.
+    void allow_only(const std::vector<const std::vector<Key>*>& groups) const;
+    // The config file these keys come from.
+    const std::string& file() const { return file_; }
     // A nested table (inline or not) as a reader of its own, without defaults; marks it used.
     TableReader table(const std::string& key);
     // Each table of an array of tables (e.g. a mixture's components), at least one.

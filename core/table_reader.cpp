@@ -1,20 +1,16 @@
-#include "gonio/config/table_reader.h"
+#include "core/table_reader.h"
 
-#include "gonio/config/config_error.h"
+#include "core/config_error.h"
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 namespace gonio {
 
 namespace {
-std::string number_text(double v) {
-    std::ostringstream s;
-    s.precision(10);
-    s << v;
-    return s.str();
-}
+std::string number_text(double v) { return shortest(v); }
 std::string type_name(const toml::node& n) {
     switch (n.type()) {
     case toml::node_type::string:
@@ -34,18 +30,6 @@ std::string type_name(const toml::node& n) {
     }
 }
 } // namespace
-
-bool Range::contains(double v) const {
-    if (!std::isfinite(v)) return false;
-    if (lo_open ? !(v > lo) : !(v >= lo)) return false;
-    if (hi_open ? !(v < hi) : !(v <= hi)) return false;
-    return true;
-}
-
-std::string Range::describe() const {
-    return std::string(lo_open ? "(" : "[") + number_text(lo) + ", " + number_text(hi) +
-           (hi_open ? ")" : "]");
-}
 
 TableReader::TableReader(const toml::table* section, std::string section_path,
                          const toml::table* defaults, std::string defaults_path, std::string file,
@@ -261,6 +245,48 @@ void TableReader::allow_only(const std::vector<std::string>& allowed) const {
                               (guess.empty() ? "" : " (did you mean '" + guess + "'?)") +
                               "; allowed here: " + list);
     }
+}
+
+double TableReader::number(const Key& k) {
+    return number(k.name, k.range, k.number_default);
+}
+long long TableReader::integer(const Key& k) {
+    std::optional<long long> fallback;
+    if (k.number_default) fallback = static_cast<long long>(*k.number_default);
+    return integer(k.name, k.range, fallback);
+}
+std::vector<double> TableReader::number_list(const Key& k) {
+    return number_list(k.name, k.range, k.numbers_default);
+}
+std::string TableReader::string(const Key& k) {
+    if (k.choices.empty()) {
+        if (!has(k.name) && k.string_default) return *k.string_default;
+        return any_string(k.name);
+    }
+    return string(k.name, k.choices, k.string_default);
+}
+std::vector<std::string> TableReader::string_list(const Key& k) {
+    return string_list(k.name, k.choices, k.strings_default);
+}
+bool TableReader::boolean(const Key& k) { return boolean(k.name, k.bool_default); }
+
+std::string TableReader::path(const Key& k) {
+    std::string p = any_string(k.name);
+    if (!p.empty() && p[0] != '/') {
+        const size_t slash = file_.find_last_of('/');
+        if (slash != std::string::npos) p = file_.substr(0, slash + 1) + p;
+    }
+    if (!std::ifstream(p)) fail(k.name, "cannot open " + p);
+    return p;
+}
+
+void TableReader::allow_only(const std::vector<const std::vector<Key>*>& groups) const {
+    std::vector<std::string> names;
+    for (const auto* g : groups)
+        for (const Key& k : *g)
+            if (std::find(names.begin(), names.end(), k.name) == names.end())
+                names.push_back(k.name);
+    allow_only(names);
 }
 
 } // namespace gonio

@@ -1,0 +1,67 @@
+#pragma once
+// The registry of models ([model] models): each kind declares its keys and reads its settings
+// into a ModelChoice, which builds the model when the case runs. A model also says which facets
+// it suits and which simulated quantity it is held against. Config loading, `gonio keys` and the
+// README's table come from this list.
+#include "core/config_key.h"
+#include "core/table_reader.h"
+#include "gonio/material/material_kind.h"
+#include "gonio/model/brdf_model.h"
+#include "gonio/model/cell_integrator.h"
+#include "heightfield/heightfield.h"
+#include "heightfield/ndf/ndf.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+// What every model of a case shares: the facets, the distribution, the masking term, and the
+// cell quadrature.
+struct ModelContext {
+    const FacetSpec& facets;
+    std::shared_ptr<const Ndf> ndf;
+    MaskingForm masking;
+    long long trace_rays; // the case's rays per incidence (the V-cavity's default)
+};
+
+struct ModelChoice {
+    std::string name;          // the kind's name
+    std::string description;   // with its settings, for the file
+    std::string compared_with; // "l1" (single scattering) or "linf" (every order)
+    bool needs_surface = false; // fitted to the traced surface (the P-BRDF)
+    // An analytic model, integrated over the cells; empty for a Monte Carlo estimator.
+    std::function<std::unique_ptr<BrdfModel>(const HeightField* surface)> build;
+    long long rays = 0; // Monte Carlo estimators: paths per incidence
+};
+
+struct ModelKind {
+    std::string name;
+    std::string summary;
+    std::vector<Key> keys; // in [model]
+    // Reads the kind's keys from [model]; refuses (r.fail on `models`) facets it does not suit.
+    ModelChoice (*create)(TableReader& r, const ModelContext& context);
+};
+
+const std::vector<const ModelKind*>& model_kinds();
+// [model]: the common keys, the models chosen and their settings.
+struct ModelSettings {
+    MaskingForm masking = MaskingForm::height_correlated;
+    CellQuadrature quadrature;
+    std::vector<ModelChoice> models; // empty with evaluate = false
+};
+ModelSettings read_models(TableReader r, const FacetSpec& facets, std::shared_ptr<const Ndf> ndf,
+                          long long trace_rays);
+std::vector<KeyGroup> model_key_groups();
+const char* masking_name(MaskingForm form);
+std::vector<KeyGroup> ashikhmin_key_groups(); // the nested table model.ashikhmin
+
+const ModelKind& l1_model_kind();
+const ModelKind& il_model_kind();
+const ModelKind& vcavity_model_kind();
+const ModelKind& ashikhmin_model_kind();
+const ModelKind& pbrdf_model_kind();
+
+} // namespace gonio
