@@ -7,12 +7,17 @@
 #include "gonio/model/case_models.h"
 #include "heightfield/surface_source.h"
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 namespace gonio {
 
 namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 std::string default_output(const std::string& config) {
     std::filesystem::path p(config);
     return p.stem().string() + ".h5";
@@ -20,6 +25,7 @@ std::string default_output(const std::string& config) {
 } // namespace
 
 int run_model_command(const ModelOptions& options) {
+    const auto wall = Clock::now();
     const Config cfg = load_config(options.config, options.overrides); // throws ConfigError
     for (size_t k = 0; k < cfg.cases.size(); ++k)
         if (cfg.cases[k].models.empty())
@@ -40,6 +46,7 @@ int run_model_command(const ModelOptions& options) {
 
     for (size_t ci = 0; ci < cfg.cases.size(); ++ci) {
         const CaseConfig& c = cfg.cases[ci];
+        auto t0 = Clock::now();
         const BeckersSensor sensor(c.sensor_cells);
         const auto ndf = make_ndf(c.ndf);
         // The P-BRDF is fitted to the surface's slopes: made (or taken from the default cache).
@@ -50,6 +57,8 @@ int run_model_command(const ModelOptions& options) {
                                      worker_threads(options.threads), origin);
         }
         CaseModels models(c, *ndf, c.needs_surface() ? &surface : nullptr);
+        std::vector<std::pair<std::string, double>> phases{{"setup", since(t0)}};
+        t0 = Clock::now();
         for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti) {
             for (size_t pi = 0; pi < c.phi_i_deg.size(); ++pi) {
                 const double theta = c.theta_i_deg[ti], phi = c.phi_i_deg[pi];
@@ -74,9 +83,14 @@ int run_model_command(const ModelOptions& options) {
                 }
             }
         }
-        writer.write_model_case(c, sensor, models.results());
+        phases.emplace_back("models", since(t0));
+        t0 = Clock::now();
+        writer.write_model_case(c, sensor, ndf->describe(), models.results());
+        phases.emplace_back("write", since(t0));
+        writer.write_timings(c.name, phases);
     }
     progress.finish();
+    writer.write_timings("", {{"wall", since(wall)}});
     writer.commit();
     if (!options.quiet) std::printf("wrote %s\n", output.c_str());
     return 0;

@@ -15,7 +15,15 @@
 
 namespace gonio {
 
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+} // namespace
+
 int run_run_command(const RunOptions& o) {
+    const auto wall = Clock::now();
     const Config cfg = load_config(o.config, o.overrides); // throws ConfigError
     const auto limit = limit_threads(o.threads);
     const int threads = worker_threads(o.threads);
@@ -31,9 +39,15 @@ int run_run_command(const RunOptions& o) {
                     "phi_i", "L1", "+-", "model", "rel_diff", "sigmas", "L2+", "T", "lost");
     for (size_t ci = 0; ci < cfg.cases.size(); ++ci) {
         const CaseConfig& c = cfg.cases[ci];
+        // Wall time per phase of the case, in the order they run.
+        std::vector<std::pair<std::string, double>> phases{
+            {"surface", 0}, {"setup", 0}, {"trace", 0}, {"models", 0}, {"write", 0}};
+        auto t0 = Clock::now();
         const auto ndf = make_ndf(c.ndf);
         SurfaceOrigin origin;
         const HeightField surface = obtain_surface(*ndf, c.surface, cache, threads, origin);
+        phases[0].second = since(t0);
+        t0 = Clock::now();
         if (!origin.warning.empty())
             std::fprintf(stderr, "gonio: warning: %s\n", origin.warning.c_str());
         const Scene scene(surface); // one surface per case: sweeps never regenerate it
@@ -48,9 +62,9 @@ int run_run_command(const RunOptions& o) {
         for (size_t m = 0; m < c.models.size() && shown < 0; ++m)
             if (models.results()[m].compared_with == "l1") shown = int(m);
         const int nc = c.channels();
-        SimulationResult sim;
-        sim.orders = c.orders + 1;
+        SimulationResult sim(c.theta_i_deg, c.phi_i_deg, sensor);
         sim.surface = origin.loaded ? c.surface.input : origin.cache_path;
+        phases[1].second = since(t0);
         Progress progress(total, o.quiet);
         for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti) {
             for (size_t pi = 0; pi < c.phi_i_deg.size(); ++pi) {
@@ -69,38 +83,38 @@ int run_run_command(const RunOptions& o) {
                 st.seed = cfg.seed;
                 st.stream =
                     (std::uint64_t(ci) << 40) ^ (std::uint64_t(ti) << 20) ^ std::uint64_t(pi);
+                t0 = Clock::now();
                 const TraceResult r = trace_incidence(scene, parts, sensor, wi, st);
+                phases[2].second += since(t0);
+                t0 = Clock::now();
                 // The models' V-cavity paths draw from their own streams (key "VCAVITY").
                 models.evaluate(wi, sensor, cfg.seed, st.stream);
                 std::vector<Comparison> comparisons;
                 for (size_t m = 0; m < c.models.size(); ++m)
                     comparisons.push_back(compare_model(
                         r, models.results()[m].compared_with == "linf", models.last(m)));
+                phases[3].second += since(t0);
                 sim.append(r, comparisons);
                 ++done;
                 if (!o.quiet) {
                     progress.finish();
-                    for (int k = 0; k < nc; ++k) {
-                        double l2plus = 0, t = 0;
-                        for (int order = 0; order < sim.orders; ++order) {
-                            if (order > 0) l2plus += r.ledger.reflected[size_t(order) * nc + k];
-                            if (transmits) t += r.ledger.transmitted[size_t(order) * nc + k];
-                        }
+                    for (size_t k = 0; k < size_t(nc); ++k) {
+                        const Estimate& l1 = sim.reflected.first_albedo;
                         std::printf("%-20s %7.2f %7.2f %10.6f %8.1e", c.name.c_str(),
-                                    c.theta_i_deg[ti], c.phi_i_deg[pi], r.ledger.reflected[k],
-                                    r.ledger_stderr.reflected[k]);
+                                    c.theta_i_deg[ti], c.phi_i_deg[pi], l1.mean.at({ti, pi, k}),
+                                    l1.error.at({ti, pi, k}));
                         if (shown >= 0) {
                             const Comparison& cmp = comparisons[size_t(shown)];
                             std::printf(" %10.6f %+10.4f %+7.1f", cmp.model_albedo[k],
                                         cmp.relative_difference[k], cmp.sigmas[k]);
                         } else
                             std::printf(" %10s %10s %7s", "-", "-", "-");
-                        std::printf(" %10.6f", l2plus);
+                        std::printf(" %10.6f", sim.reflected.higher_albedo.mean.at({ti, pi, k}));
                         if (transmits)
-                            std::printf(" %10.6f", t);
+                            std::printf(" %10.6f", sim.transmitted.all_albedo.mean.at({ti, pi, k}));
                         else
                             std::printf(" %10s", "-");
-                        std::printf(" %9.2e", r.ledger.lost[k]);
+                        std::printf(" %9.2e", sim.lost.mean.at({ti, pi, k}));
                         if (c.target.active())
                             std::printf("  %s: %.2e with %lld rays", r.stop.c_str(),
                                         r.achieved_error, r.rays);
@@ -110,8 +124,12 @@ int run_run_command(const RunOptions& o) {
             }
         }
         progress.finish();
-        writer.write_simulation_case(c, sensor, sim, models.results());
+        t0 = Clock::now();
+        writer.write_simulation_case(c, sensor, ndf->describe(), sim, models.results());
+        phases[4].second = since(t0);
+        writer.write_timings(c.name, phases);
     }
+    writer.write_timings("", {{"wall", since(wall)}});
     writer.commit();
     if (!o.quiet) std::printf("wrote %s\n", output.c_str());
     return 0;
