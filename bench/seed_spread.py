@@ -74,8 +74,9 @@ def main():
             sys.exit(r.stderr.decode())
         with h5py.File(out, "r") as f:
             g = f["c"]
-            stop = g.attrs["stop"]
+            stop = g.attrs["stop"]  # a string array (format 2) or comma-joined (format 1)
             stop = stop.decode() if isinstance(stop, bytes) else stop
+            stop = stop if isinstance(stop, str) else str(stop[0])
             for q in quantities:  # channel 0 (650 nm)
                 values[q].append(g[q][0, 0, 0])
                 errors[q].append(g[q + "_stderr"][0, 0, 0])

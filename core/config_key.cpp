@@ -137,7 +137,7 @@ std::string Key::type_text() const {
         s = "integer in " + range.describe();
         break;
     case KeyKind::numbers:
-        s = "number or array (sweep) in " + range.describe() + unit_text;
+        s = "number or array in " + range.describe() + unit_text;
         break;
     case KeyKind::string:
         s = choices.empty() ? "string" : "one of " + quoted_list(choices);

@@ -20,17 +20,16 @@ struct Range {
     std::string describe() const;
 };
 
-
 enum class KeyKind {
-    number,   // a number in `range`
-    integer,  // an integer in `range`
-    numbers,  // a number, an array of numbers, or a range table {start, stop, step|count}
-    string,   // one of `choices` (any string when empty)
-    strings,  // a string or an array of strings, each one of `choices`
-    boolean,  // true or false
-    path,     // a file path, relative to the config file
-    table,    // a nested table (e.g. an NDF inside a blend)
-    tables,   // an array of nested tables
+    number,  // a number in `range`
+    integer, // an integer in `range`
+    numbers, // a number, an array of numbers, or a range table {start, stop, step|count}
+    string,  // one of `choices` (any string when empty)
+    strings, // a string or an array of strings, each one of `choices`
+    boolean, // true or false
+    path,    // a file path, relative to the config file
+    table,   // a nested table (e.g. an NDF inside a blend)
+    tables,  // an array of nested tables
 };
 
 struct Key {

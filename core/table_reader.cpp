@@ -10,7 +10,9 @@
 namespace gonio {
 
 namespace {
-std::string number_text(double v) { return shortest(v); }
+std::string number_text(double v) {
+    return shortest(v);
+}
 std::string type_name(const toml::node& n) {
     switch (n.type()) {
     case toml::node_type::string:
@@ -268,7 +270,9 @@ std::string TableReader::string(const Key& k) {
 std::vector<std::string> TableReader::string_list(const Key& k) {
     return string_list(k.name, k.choices, k.strings_default);
 }
-bool TableReader::boolean(const Key& k) { return boolean(k.name, k.bool_default); }
+bool TableReader::boolean(const Key& k) {
+    return boolean(k.name, k.bool_default);
+}
 
 std::string TableReader::path(const Key& k) {
     std::string p = any_string(k.name);

@@ -14,7 +14,6 @@
 
 namespace gonio {
 
-
 class UsageTracker {
   public:
     void mark(const toml::node* n) { used_.insert(n); }

@@ -1,6 +1,6 @@
 // gonio: a virtual gonioreflectometer for explicit microfacet surfaces. See README.md.
-#include "gonio/cli/commands.h"
 #include "core/config_error.h"
+#include "gonio/cli/commands.h"
 #include "gonio_version.h"
 
 #include <CLI/CLI.hpp>
@@ -83,6 +83,12 @@ int main(int argc, char** argv) {
     info_cmd->add_option("file", info_path, "HDF5 result file")->required();
     info_cmd->add_flag("--json", info_json, "Print a JSON object instead of text");
 
+    bool keys_markdown = false;
+    CLI::App* keys_cmd = app.add_subcommand(
+        "keys", "List every config key: its section, range, default and meaning");
+    keys_cmd->add_flag("--markdown", keys_markdown,
+                       "Print the README's configuration table (Markdown)");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -96,6 +102,7 @@ int main(int argc, char** argv) {
         if (*ndf_cmd) return gonio::run_ndf_command(ndf);
         if (*compare_cmd) return gonio::run_compare_command(compare_path);
         if (*info_cmd) return gonio::run_info_command(info_path, info_json);
+        if (*keys_cmd) return gonio::run_keys_command(keys_markdown);
     } catch (const gonio::ConfigError& e) {
         std::fprintf(stderr, "gonio: error: %s\n", e.what());
         return 2;

@@ -11,22 +11,22 @@ const char* const kGeneratorNames[] = {"sliced-matching", "algorithm1", "heitz",
 const char* const kConstraintNames[] = {"none", "domes", "holes"};
 const char* const kEdgeNames[] = {"periodic", "mirror"};
 
-const Key kGenerator =
-    Key::string("generator", {"sliced-matching", "algorithm1", "heitz"},
-                "how the microsurface is made (below)")
-        .fallback("sliced-matching");
+const Key kGenerator = Key::string("generator", {"sliced-matching", "algorithm1", "heitz"},
+                                   "how the microsurface is made (below)")
+                           .fallback("sliced-matching");
 const Key kSeed = Key::integer("seed", {0, 9.2e18},
                                "the surface's own seed: vary `seed` with this fixed and only the "
                                "rays change")
                       .note_default("`seed`");
-const Key kSize =
-    Key::integer("size", {8, 16384}, "samples per side of the periodic height field").fallback(256.0);
+const Key kSize = Key::integer("size", {8, 16384}, "samples per side of the periodic height field")
+                      .fallback(256.0);
 const Key kSpacing = Key::number("spacing", {1e-9, 1e9, true, false},
                                  "distance between samples (heights scale with it; slopes do not)")
                          .fallback(1.0);
 const Key kInput =
-    Key::path("input", "a measured height map instead of generation (square, one channel Y/Z/H/R), "
-                       "or a normal map (R, G, B = the unit normal) integrated by Frankot-Chellappa")
+    Key::path("input",
+              "a measured height map instead of generation (square, one channel Y/Z/H/R), "
+              "or a normal map (R, G, B = the unit normal) integrated by Frankot-Chellappa")
         .note_default("—");
 const Key kEdges = Key::string("edges", {"periodic", "mirror"},
                                "input maps: keep as is, or tile with mirror images into a periodic "
@@ -35,10 +35,10 @@ const Key kEdges = Key::string("edges", {"periodic", "mirror"},
 // The matching generators (sliced-matching, algorithm1).
 const Key kIterations =
     Key::integer("iterations", {0, 1e6}, "iterations of the generator (R19: 500)").fallback(500.0);
-const Key kThreshold = Key::number("threshold", {0, 1, true, false},
-                                   "Schwarz threshold of Algorithm 1 (R19: 0.02)")
-                           .fallback(0.02)
-                           .cited("R19 Eq. 19");
+const Key kThreshold =
+    Key::number("threshold", {0, 1, true, false}, "Schwarz threshold of Algorithm 1 (R19: 0.02)")
+        .fallback(0.02)
+        .cited("R19 Eq. 19");
 const Key kStop = Key::boolean("stop_when_converged",
                                "stop when the NDF distance (checked every 10 iterations) stops "
                                "improving")
@@ -53,20 +53,27 @@ const Key kLattice = Key::integer("lattice", {1, 8192}, "domes/holes: features p
 const Key kRelief =
     Key::number("relief", {1e-6, 100}, "domes/holes: height over radius").fallback(0.5);
 // heitz
-const Key kCorrelation = Key::number("correlation_length", {0.5, 1e6},
-                                     "heitz: Gaussian correlation length, in samples")
-                             .fallback(8.0);
+const Key kCorrelation =
+    Key::number("correlation_length", {0.5, 1e6}, "heitz: Gaussian correlation length, in samples")
+        .fallback(8.0);
 
-template <class E, size_t N> E by_name(const char* const (&names)[N], const std::string& s) {
+template <class E, size_t N>
+E by_name(const char* const (&names)[N], const std::string& s) {
     for (size_t k = 0; k < N; ++k)
         if (s == names[k]) return E(k);
     throw std::invalid_argument("unknown name '" + s + "'");
 }
 } // namespace
 
-const char* name_of(Generator g) { return kGeneratorNames[int(g)]; }
-const char* name_of(Constraint c) { return kConstraintNames[int(c)]; }
-const char* name_of(Edges e) { return kEdgeNames[int(e)]; }
+const char* name_of(Generator g) {
+    return kGeneratorNames[int(g)];
+}
+const char* name_of(Constraint c) {
+    return kConstraintNames[int(c)];
+}
+const char* name_of(Edges e) {
+    return kEdgeNames[int(e)];
+}
 Generator generator_named(const std::string& name) {
     return by_name<Generator>(kGeneratorNames, name);
 }
@@ -89,8 +96,9 @@ SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf) {
     if (s.generator == Generator::heitz) {
         double ax, ay;
         if (!ndf.gaussian_slopes(ax, ay))
-            r.fail("generator", "\"heitz\" makes Beckmann surfaces only; this case's ndf.type is \"" +
-                                    ndf.name() + "\"");
+            r.fail("generator",
+                   "\"heitz\" makes Beckmann surfaces only; this case's ndf.type is \"" +
+                       ndf.name() + "\"");
         s.correlation_length = r.number(kCorrelation);
         return s;
     }
@@ -99,8 +107,8 @@ SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf) {
     s.stop_when_converged = r.boolean(kStop);
     s.constraint = by_name<Constraint>(kConstraintNames, r.string(kConstraint));
     if (s.constraint != Constraint::none) {
-        s.lattice = static_cast<int>(r.integer(kLattice.name, {1, double(s.size / 2)},
-                                               (long long)*kLattice.number_default));
+        s.lattice = static_cast<int>(
+            r.integer(kLattice.name, {1, double(s.size / 2)}, (long long)*kLattice.number_default));
         s.relief = r.number(kRelief);
     }
     return s;
@@ -108,7 +116,8 @@ SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf) {
 
 std::vector<KeyGroup> surface_key_groups() {
     return {{"surface", "", "", {kGenerator, kSeed, kSize, kSpacing, kInput, kEdges}},
-            {"surface", "sliced-matching, algorithm1",
+            {"surface",
+             "sliced-matching, algorithm1",
              "iterative Frankot-Chellappa with matching [R19 Algorithm 1]",
              {kIterations, kThreshold, kStop, kConstraint, kLattice, kRelief}},
             {"surface", "heitz", "random-phase Gaussian surface (Heitz 2015)", {kCorrelation}}};

@@ -41,9 +41,9 @@ struct SurfaceSpec {
     double threshold = 0.02;          // Schwarz threshold, R19: 0.02
     bool stop_when_converged = false; // stop when the NDF distance stops improving
     std::uint64_t seed = 1;
-    int lattice = 8;              // domes/holes: features per side
-    double relief = 0.5;          // domes/holes: feature height over its radius
-    std::string input;            // an EXR height map to load instead of generating
+    int lattice = 8;               // domes/holes: features per side
+    double relief = 0.5;           // domes/holes: feature height over its radius
+    std::string input;             // an EXR height map to load instead of generating
     Edges edges = Edges::periodic; // loaded maps
 };
 

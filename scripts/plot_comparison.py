@@ -77,6 +77,14 @@ def draw(group, name, m, sim_name, sim_label, t, p, theta, phi, channel, out_dir
     return 1
 
 
+def string_list(value):
+    """A list attribute: a string array (file format 2) or a comma-joined string (format 1)."""
+    if isinstance(value, (bytes, str)):
+        value = value.decode() if isinstance(value, bytes) else value
+        return value.split(",") if value else []
+    return [v.decode() if isinstance(v, bytes) else str(v) for v in value]
+
+
 def main():
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     channel = 0
@@ -91,15 +99,14 @@ def main():
     written = 0
     with h5py.File(path, "r") as f:
         for name, group in f.items():
-            models = group.attrs.get("models", "")
-            models = models.decode() if isinstance(models, bytes) else str(models)
+            models = string_list(group.attrs.get("models", ""))
             if "brdf_l1" not in group or not models:
                 continue  # a model-only case, or a run without models
             nc = group["channel"].shape[0]
             if channel >= nc:
                 sys.exit(f"{name}: channel {channel} out of range [0, {nc - 1}]")
             theta_i, phi_i = group["theta_i"][...], group["phi_i"][...]
-            for m in models.split(","):
+            for m in models:
                 vs = group.attrs[f"model_{m}_compared_with"]
                 vs = vs.decode() if isinstance(vs, bytes) else str(vs)
                 sim_name, sim_label = ("brdf_linf", "every order") if vs == "linf" else ("brdf_l1", "L1")

@@ -3,14 +3,14 @@
 // disk and hemisphere partition into equal-area cells", Comput. Geom. 45(7)), as used by the
 // virtual gonioreflectometer of R19 section 5. Every cell subtends exactly 2 pi / N sr.
 //
-// Rings are built from the rim inwards (DESIGN section 5): with S_0 = N cells inside the cap of
-// angle pi/2, step inwards by d_theta = sqrt(2 pi / N) (the side of a square cell), round the
-// number of cells inside the new cap, S_l = round(N (1 - cos theta_l)), and put the boundary
-// exactly where that cap holds S_l cells: cos theta_l = 1 - S_l / N. A cap of fewer than 7 cells
-// becomes one polar cell. Since the number of cells inside the cap of angle theta is
-// u = N (1 - cos theta), a direction's ring is found from u through a bucket table; its cell in
-// the ring from a fast azimuth estimate, decided by exact side tests against the cells' boundary
-// directions when it lies near one: no trigonometry, no search.
+// Rings are built from the rim inwards (README, "How the pieces work"): with S_0 = N cells inside
+// the cap of angle pi/2, step inwards by d_theta = sqrt(2 pi / N) (the side of a square cell),
+// round the number of cells inside the new cap, S_l = round(N (1 - cos theta_l)), and put the
+// boundary exactly where that cap holds S_l cells: cos theta_l = 1 - S_l / N. A cap of fewer than 7
+// cells becomes one polar cell. Since the number of cells inside the cap of angle theta is u = N (1
+// - cos theta), a direction's ring is found from u through a bucket table; its cell in the ring
+// from a fast azimuth estimate, decided by exact side tests against the cells' boundary directions
+// when it lies near one: no trigonometry, no search.
 //
 // The transmission sensor below the surface is the mirror image of this one through the plane
 // z = 0: cell c of the lower sensor holds the directions whose mirror image lies in cell c.

@@ -106,15 +106,16 @@ TEST_CASE("A00 velvet [Eq. 35]: reciprocal, and retroreflective with the correla
     CHECK(back > forward);
 }
 
-TEST_CASE("A00 diffuse term [Eq. 28-30]: a white surface returns everything; a metal keeps f0") {
+TEST_CASE("A00 diffuse term [Eq. 28-30]: a white surface returns everything, a metal keeps f0") {
     const Ggx ndf(0.4, 0.4);
     const BeckersSensor sensor(577);
     for (AshikhminDiffuse kind : {AshikhminDiffuse::dielectric, AshikhminDiffuse::metal}) {
         CAPTURE(int(kind));
         AshikhminSettings s;
         s.diffuse = kind;
-        const FresnelTerm fresnel =
-            kind == AshikhminDiffuse::metal ? FresnelTerm::schlick({0.9}) : FresnelTerm::dielectric({1.5});
+        const FresnelTerm fresnel = kind == AshikhminDiffuse::metal
+                                        ? FresnelTerm::schlick({0.9})
+                                        : FresnelTerm::dielectric({1.5});
         const AshikhminModel model(density_of(ndf), fresnel, s);
         AshikhminSettings bare = s;
         bare.diffuse = AshikhminDiffuse::none;
@@ -130,11 +131,13 @@ TEST_CASE("A00 diffuse term [Eq. 28-30]: a white surface returns everything; a m
             const double r = model.reflectance(i, 0);
             // Expected: R + (1 - R) (white), R + f0 (f0 - R) (metal, rho_d = f0); the model uses
             // the tabulated R, the cells integrate rho_s: they differ by the table's error.
-            const double expected =
-                kind == AshikhminDiffuse::metal ? r_cells + f0 * std::max(0.0, f0 - r) : r_cells + (1 - r);
+            const double expected = kind == AshikhminDiffuse::metal
+                                        ? r_cells + f0 * std::max(0.0, f0 - r)
+                                        : r_cells + (1 - r);
             CHECK(std::abs(total - expected) <= 1e-5);
             CHECK(std::abs(r - r_cells) <= 2e-3);
-            if (kind == AshikhminDiffuse::dielectric) CHECK(total == doctest::Approx(1.0).epsilon(2e-3));
+            if (kind == AshikhminDiffuse::dielectric)
+                CHECK(total == doctest::Approx(1.0).epsilon(2e-3));
         }
     }
 }

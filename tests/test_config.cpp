@@ -1,6 +1,7 @@
-#include "gonio/config/config.h"
 #include "core/config_error.h"
+#include "gonio/config/config.h"
 
+#include <algorithm>
 #include <doctest/doctest.h>
 #include <filesystem>
 #include <fstream>
@@ -134,8 +135,8 @@ TEST_CASE("config errors name the file, the line, the key and the allowed range"
     SUBCASE("a cell count < 1") {
         const ConfigError e = error_of(std::string(kBase) + "[sensor]\ncells = 0\n");
         CHECK(e.line() == 8);
-        CHECK(contains(e.what(),
-                       "key 'sensor.cells': value 0 is out of range; allowed [1, 1e+07]"));
+        CHECK(
+            contains(e.what(), "key 'sensor.cells': value 0 is out of range; allowed [1, 1e+07]"));
     }
     SUBCASE("a cell count that is not an integer") {
         CHECK(contains(error_of(std::string(kBase) + "[sensor]\ncells = 10.5\n").what(),
@@ -272,8 +273,8 @@ TEST_CASE("surface config: defaults, values and errors") {
         error_of(std::string(kBase) + "[surface]\ngenerator = \"heitz\"\n", {"ndf.type=ggx"})
             .what(),
         "\"heitz\" makes Beckmann surfaces only"));
-    CHECK(contains(err("input = \"missing.exr\"\n"),
-                   "key 'surface.input': cannot open missing.exr"));
+    CHECK(
+        contains(err("input = \"missing.exr\"\n"), "key 'surface.input': cannot open missing.exr"));
 }
 
 TEST_CASE("the generalised NDF family in a config: its shape keys, their ranges") {
@@ -450,9 +451,37 @@ TEST_CASE("models per case: defaults by material, lists, what each needs, Ashikh
     const std::string ash = "[model]\nmodels = \"ashikhmin\"\n";
     CHECK(contains(error_of(head + ash + "ashikhmin = { diffuse = \"lambert\" }\n").what(),
                    "key 'model.ashikhmin.diffuse'"));
-    CHECK(contains(error_of(head + ash + "ashikhmin = { rho = 1 }\n").what(),
-                   "model.ashikhmin.rho"));
+    CHECK(
+        contains(error_of(head + ash + "ashikhmin = { rho = 1 }\n").what(), "model.ashikhmin.rho"));
     CHECK(contains(error_of(head + "[model]\nashikhmin = { rho_d = 1 }\n").what(),
                    "key 'model.ashikhmin': is not used"));
     CHECK(parse_config(head + "[model]\nmodels = \"pbrdf\"\n", "t.toml").cases[0].needs_surface());
+}
+
+TEST_CASE("the README's configuration table is the declared keys (gonio keys --markdown)") {
+    std::ifstream in(std::string(GONIO_SOURCE_DIR) + "/README.md");
+    REQUIRE(in);
+    const std::string readme((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
+    const std::string begin = "<!-- keys:begin (generated: build/gonio keys --markdown) -->\n";
+    const std::string end = "<!-- keys:end -->";
+    const size_t a = readme.find(begin), b = readme.find(end);
+    REQUIRE(a != std::string::npos);
+    REQUIRE(b != std::string::npos);
+    // Out of date: regenerate the block with `build/gonio keys --markdown`.
+    CHECK(readme.substr(a + begin.size(), b - a - begin.size()) == keys_markdown());
+}
+
+TEST_CASE("every declared key has a meaning, a range or choices, and reads back its default") {
+    for (const KeyGroup& g : config_key_groups())
+        for (const Key& k : g.keys) {
+            CAPTURE(g.section + "." + k.name);
+            CHECK(!k.meaning.empty());
+            if (k.kind == KeyKind::number || k.kind == KeyKind::integer)
+                CHECK(k.range.lo <= k.range.hi);
+            if (k.number_default) CHECK(k.range.contains(*k.number_default));
+            if (k.string_default && !k.choices.empty())
+                CHECK(std::find(k.choices.begin(), k.choices.end(), *k.string_default) !=
+                      k.choices.end());
+        }
 }

@@ -4,7 +4,7 @@
 // surfaces of 8^2 and 16^2, sensors of 1, 2 and 10^4 cells, a bounce cap of 1). In every case:
 // nothing non-finite in the output, the ledger closes, albedos lie in [0, 1] within their errors,
 // Lambda is finite and monotone, near-specular surfaces put the Fresnel value into the specular
-// cell. What lies outside the domain is rejected up front (test_result_file.cpp, config errors).
+// cell. What lies outside the domain is rejected up front (test_commands.cpp, config errors).
 #include "core/hemisphere_integral.h"
 #include "gonio/io/hdf5_handles.h"
 #include "gonio/material/fresnel.h"

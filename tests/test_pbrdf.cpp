@@ -45,7 +45,7 @@ TEST_CASE("C19: one Beckmann lobe everywhere gives Beckmann's D, Lambda and BRDF
     }
 }
 
-TEST_CASE("C19: the fitted mixture keeps the map's slope moments; its P-NDF integrates to A_P") {
+TEST_CASE("C19: the fitted mixture keeps the map's slope moments, and its P-NDF integrates to A_P") {
     const HeightField s = brushed_surface(16);
     const std::vector<SlopeLobe> lobes = fit_slope_lobes(s);
     REQUIRE(lobes.size() == 256);

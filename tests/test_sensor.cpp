@@ -44,8 +44,8 @@ TEST_CASE("Beckers rings tile the hemisphere from the pole to the horizon") {
 }
 
 TEST_CASE("Beckers cells of the shipped sizes are close to square") {
-    // DESIGN section 5: some N give a poor second ring. Polar extent over azimuthal width, for
-    // every ring outside the polar cap.
+    // Some N give a poor second ring (README, "How the pieces work"). Polar extent over azimuthal
+    // width, for every ring outside the polar cap.
     for (int n : {145, 3240, 10000}) {
         const BeckersSensor s(n);
         double worst = 1;

@@ -52,7 +52,9 @@ HeightField make(const Ndf& ndf, const std::string& generator, int iterations = 
     s.size = 256;
     s.iterations = iterations;
     s.generator = generator_named(generator);
-    s.constraint = constraint == "none" ? Constraint::none : constraint == "domes" ? Constraint::domes : Constraint::holes;
+    s.constraint = constraint == "none"    ? Constraint::none
+                   : constraint == "domes" ? Constraint::domes
+                                           : Constraint::holes;
     s.seed = seed;
     return generate_surface(ndf, s, 2, log);
 }
@@ -191,7 +193,7 @@ TEST_CASE("the Schwarz error falls and the surface is periodic") {
     }
 }
 
-TEST_CASE("same seed, same heights with 1 and 2 threads; another seed, another surface") {
+TEST_CASE("same seed, same heights with 1 and 2 threads, and another seed, another surface") {
     const Ggx ggx(0.3);
     for (const char* g : {"sliced-matching", "algorithm1"}) {
         SurfaceSpec s;
@@ -211,7 +213,7 @@ TEST_CASE("same seed, same heights with 1 and 2 threads; another seed, another s
     }
 }
 
-TEST_CASE("EXR height maps round-trip with their attributes; bad files give clear errors") {
+TEST_CASE("EXR height maps round-trip with their attributes, and bad files give clear errors") {
     const fs::path dir = fs::temp_directory_path() / ("gonio_exr_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     HeightField s(32, 0.25);

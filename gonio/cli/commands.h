@@ -56,6 +56,9 @@ int run_ndf_command(const NdfOptions& options);
 // `gonio compare FILE`: the Model-vs-simulated table of a result file.
 int run_compare_command(const std::string& path);
 
+// `gonio keys [--markdown]`: every config key, from the components' declarations.
+int run_keys_command(bool markdown);
+
 // `gonio info FILE [--json]`.
 int run_info_command(const std::string& path, bool as_json);
 

@@ -2,7 +2,8 @@
 #include "gonio/io/result_reader.h"
 
 #include <cstdio>
-#include <sstream>
+#include <string>
+#include <vector>
 
 namespace gonio {
 
@@ -29,11 +30,7 @@ int run_compare_command(const std::string& path) {
             std::printf(" %18s", (std::string(v) + e).c_str());
         };
         if (c.albedos.count("l1_albedo") == 0) continue; // a model-only case
-        std::vector<std::string> models;
-        if (auto it = c.attributes.find("models"); it != c.attributes.end()) {
-            std::stringstream list(it->second);
-            for (std::string m; std::getline(list, m, ',');) models.push_back(m);
-        }
+        std::vector<std::string> models = c.models;
         if (models.empty()) models.push_back("");
         const size_t np = c.phi_i_deg.size(), nc = c.channels;
         for (size_t t = 0; t < c.theta_i_deg.size(); ++t)

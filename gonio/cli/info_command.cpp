@@ -1,9 +1,8 @@
 #include "gonio/cli/commands.h"
-#include "gonio/io/json.h"
 #include "gonio/io/result_reader.h"
 
 #include <cstdio>
-#include <sstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace gonio {
@@ -15,54 +14,57 @@ std::string attribute(const std::map<std::string, std::string>& a, const std::st
     return it == a.end() ? "" : it->second;
 }
 
-std::vector<std::string> split(const std::string& list) {
-    std::vector<std::string> out;
-    std::stringstream in(list);
-    for (std::string item; std::getline(in, item, ',');) out.push_back(item);
+// Phase -> seconds, in the order the phases ran.
+nlohmann::ordered_json timings_json(const std::vector<std::pair<std::string, double>>& timings) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::object();
+    for (const auto& [phase, seconds] : timings) out[phase] = seconds;
     return out;
 }
 
 void print_json(const ResultSummary& s) {
-    std::string out = "{\n";
-    out += "  \"file\": " + json::quote(s.path) + ",\n";
+    using json = nlohmann::ordered_json;
+    json out = json::object();
+    out["file"] = s.path;
     for (const char* k :
          {"file_format", "gonio_version", "git_hash", "command_line", "config_path", "created_utc"})
-        out += "  " + json::quote(k) + ": " + json::quote(attribute(s.attributes, k)) + ",\n";
-    out += "  \"seed\": " + std::to_string(s.seed) + ",\n";
-    out += "  \"cases\": [";
-    for (size_t ci = 0; ci < s.cases.size(); ++ci) {
-        const CaseSummary& c = s.cases[ci];
-        out += ci ? ",\n    {" : "\n    {";
-        out += "\"name\": " + json::quote(c.name);
+        out[k] = attribute(s.attributes, k);
+    out["seed"] = s.seed;
+    if (!s.timings.empty()) out["timings"] = timings_json(s.timings);
+    json cases = json::array();
+    for (const CaseSummary& c : s.cases) {
+        json jc = json::object();
+        jc["name"] = c.name;
         for (const char* k : {"ndf", "material", "fresnel", "masking"})
-            out += ", " + json::quote(k) + ": " + json::quote(attribute(c.attributes, k));
-        out += ", \"cells\": " + std::to_string(c.cells);
-        out += ", \"channels\": " + std::to_string(c.channels);
-        out += ", \"wavelength_nm\": " + json::array(c.wavelength_nm);
-        out += ",\n     \"incidences\": [";
+            jc[k] = attribute(c.attributes, k);
+        jc["cells"] = c.cells;
+        jc["channels"] = c.channels;
+        jc["wavelength_nm"] = c.wavelength_nm;
+        jc["models"] = c.models;
+        if (!c.timings.empty()) jc["timings"] = timings_json(c.timings);
+        json incidences = json::array();
         const size_t np = c.phi_i_deg.size(), nc = c.channels;
         for (size_t t = 0; t < c.theta_i_deg.size(); ++t) {
             for (size_t p = 0; p < np; ++p) {
-                out += (t || p) ? ",\n       {" : "\n       {";
-                out += "\"theta_i\": " + json::number(c.theta_i_deg[t]);
-                out += ", \"phi_i\": " + json::number(c.phi_i_deg[p]);
-                for (const auto& [name, values] : c.albedos) {
-                    std::vector<double> v(values.begin() + (t * np + p) * nc,
-                                          values.begin() + (t * np + p + 1) * nc);
-                    out += ", " + json::quote(name) + ": " + json::array(v);
-                }
-                for (const auto& [name, values] : c.runs)
-                    out += ", " + json::quote(name) + ": " + json::number(values[t * np + p]);
-                const std::vector<std::string> stops = split(attribute(c.attributes, "stop"));
-                if (t * np + p < stops.size())
-                    out += ", \"stop\": " + json::quote(stops[t * np + p]);
-                out += "}";
+                const size_t i = t * np + p;
+                json ji = json::object();
+                ji["theta_i"] = c.theta_i_deg[t];
+                ji["phi_i"] = c.phi_i_deg[p];
+                for (const auto& [name, values] : c.albedos)
+                    ji[name] = std::vector<double>(values.begin() + long(i * nc),
+                                                   values.begin() + long((i + 1) * nc));
+                for (const auto& [name, values] : c.runs) ji[name] = values[i];
+                if (i < c.stop.size()) ji["stop"] = c.stop[i];
+                incidences.push_back(std::move(ji));
             }
         }
-        out += "]}";
+        jc["incidences"] = std::move(incidences);
+        cases.push_back(std::move(jc));
     }
-    out += "\n  ]\n}\n";
-    std::fputs(out.c_str(), stdout);
+    out["cases"] = std::move(cases);
+    // Numbers in their shortest round-trip form, NaN and infinities as null; a string that is not
+    // UTF-8 (a config file's bytes) gets U+FFFD where it is broken rather than failing.
+    const std::string text = out.dump(2, ' ', false, json::error_handler_t::replace);
+    std::fputs((text + "\n").c_str(), stdout);
 }
 
 void print_text(const ResultSummary& s) {
@@ -73,6 +75,15 @@ void print_text(const ResultSummary& s) {
                 attribute(s.attributes, "created_utc").c_str());
     std::printf("  config %s\n  command %s\n", attribute(s.attributes, "config_path").c_str(),
                 attribute(s.attributes, "command_line").c_str());
+    auto print_timings = [](const char* indent,
+                            const std::vector<std::pair<std::string, double>>& timings) {
+        if (timings.empty()) return;
+        std::printf("%stimings", indent);
+        for (const auto& [phase, seconds] : timings)
+            std::printf(" %s %.3f s", phase.c_str(), seconds);
+        std::printf("\n");
+    };
+    print_timings("  ", s.timings);
     for (const CaseSummary& c : s.cases) {
         std::printf("\ncase %s: %s, %s, masking %s, %d cells, %d channel%s", c.name.c_str(),
                     attribute(c.attributes, "ndf").c_str(),
@@ -89,9 +100,11 @@ void print_text(const ResultSummary& s) {
         auto is_error = [](const std::string& name) {
             return name.size() > 7 && name.compare(name.size() - 7, 7, "_stderr") == 0;
         };
-        const std::vector<std::string> stops = split(attribute(c.attributes, "stop"));
+        const std::vector<std::string>& stops = c.stop;
         const auto rays = c.runs.find("rays");
-        std::printf("\n  %8s %8s", "theta_i", "phi_i");
+        std::printf("\n");
+        print_timings("  ", c.timings);
+        std::printf("  %8s %8s", "theta_i", "phi_i");
         for (const auto& [name, v] : c.albedos)
             if (!is_error(name)) std::printf("  %s", name.c_str());
         if (rays != c.runs.end()) std::printf("  rays  stop");

@@ -1,8 +1,8 @@
+#include "core/config_error.h"
 #include "gonio/cli/cli_common.h"
 #include "gonio/cli/commands.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
-#include "core/config_error.h"
 #include "gonio/io/result_writer.h"
 #include "gonio/pipeline/simulate_case.h"
 
@@ -22,8 +22,8 @@ int run_model_command(const ModelOptions& options) {
     PhaseTimes run;
     double ndf_seconds = 0;
     for (const CaseConfig& c : cfg.cases) ndf_seconds += c.ndf_seconds;
-    run.add("config", std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count() -
-                          ndf_seconds);
+    run.add("config",
+            std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count() - ndf_seconds);
     auto t = PhaseTimes::Clock::now();
     const std::string output = options.output.empty()
                                    ? std::filesystem::path(options.config).stem().string() + ".h5"
@@ -60,7 +60,7 @@ int run_model_command(const ModelOptions& options) {
         settings.case_index = ci;
         const CaseResult result = evaluate_case_models(c, settings, observer);
         t = PhaseTimes::Clock::now();
-        writer.write_model_case(c, c.ndf->describe(), *result.sensor, result.models);
+        writer.write_model_case(c, *result.sensor, c.ndf->describe(), result.models);
         PhaseTimes phases = result.phases;
         phases.add_since("writing", t);
         writer.write_timings(c.name, phases.phases());

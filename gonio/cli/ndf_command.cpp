@@ -2,11 +2,11 @@
 // D(theta) along phi = 0 and pi/2, Smith's Lambda(theta) along both, the normalisation by
 // quadrature and the albedo of Model L1 at the case's incidences. --csv writes the curves for
 // scripts/plot_ndf.py.
+#include "core/config_error.h"
 #include "core/quadrature.h"
 #include "gonio/cli/cli_common.h"
 #include "gonio/cli/commands.h"
 #include "gonio/config/config.h"
-#include "core/config_error.h"
 #include "gonio/model/cell_integrator.h"
 #include "gonio/model/microfacet_model.h"
 

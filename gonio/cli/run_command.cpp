@@ -15,16 +15,12 @@ namespace {
 // single scattering beside it (every model is in the file), L2+, the transmitted and lost parts.
 void print_incidence(const CaseConfig& c, const IncidenceReport& r, int shown) {
     const TraceResult& t = *r.trace;
-    const int nc = c.channels(), no = t.orders;
-    for (int k = 0; k < nc; ++k) {
-        double l2plus = 0, transmitted = 0;
-        for (int order = 0; order < no; ++order) {
-            if (order > 0) l2plus += t.ledger.reflected[size_t(order) * nc + k];
-            if (!t.ledger.transmitted.empty())
-                transmitted += t.ledger.transmitted[size_t(order) * nc + k];
-        }
+    const SimulationResult& sim = *r.simulation;
+    const size_t ti = r.theta_index, pi = r.phi_index;
+    for (size_t k = 0; k < size_t(c.channels()); ++k) {
+        const Estimate& l1 = sim.reflected.first_albedo;
         std::printf("%-20s %7.2f %7.2f %10.6f %8.1e", c.name.c_str(), r.theta_deg, r.phi_deg,
-                    t.ledger.reflected[k], t.ledger_stderr.reflected[k]);
+                    l1.mean.at({ti, pi, k}), l1.error.at({ti, pi, k}));
         if (shown >= 0) {
             const Comparison& cmp = (*r.comparisons)[size_t(shown)];
             std::printf(" %10.6f %+10.4f %+7.1f", cmp.model_albedo[k], cmp.relative_difference[k],
@@ -32,12 +28,12 @@ void print_incidence(const CaseConfig& c, const IncidenceReport& r, int shown) {
         } else {
             std::printf(" %10s %10s %7s", "-", "-", "-");
         }
-        std::printf(" %10.6f", l2plus);
+        std::printf(" %10.6f", sim.reflected.higher_albedo.mean.at({ti, pi, k}));
         if (c.material.transmits)
-            std::printf(" %10.6f", transmitted);
+            std::printf(" %10.6f", sim.transmitted.all_albedo.mean.at({ti, pi, k}));
         else
             std::printf(" %10s", "-");
-        std::printf(" %9.2e", t.ledger.lost[k]);
+        std::printf(" %9.2e", sim.lost.mean.at({ti, pi, k}));
         if (c.trace.target.active())
             std::printf("  %s: %.2e with %lld rays", t.stop.c_str(), t.achieved_error, t.rays);
         std::printf("\n");
@@ -52,8 +48,8 @@ int run_run_command(const RunOptions& o) {
     PhaseTimes run;
     double ndf_seconds = 0;
     for (const CaseConfig& c : cfg.cases) ndf_seconds += c.ndf_seconds;
-    run.add("config", std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count() -
-                          ndf_seconds);
+    run.add("config",
+            std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count() - ndf_seconds);
     auto t = PhaseTimes::Clock::now();
     const auto limit = limit_threads(o.threads);
     const std::string output =
@@ -93,7 +89,7 @@ int run_run_command(const RunOptions& o) {
         const CaseResult result = simulate_case(c, settings, observer);
         progress.finish();
         t = PhaseTimes::Clock::now();
-        writer.write_simulation_case(c, c.ndf->describe(), *result.sensor, result.simulation,
+        writer.write_simulation_case(c, *result.sensor, c.ndf->describe(), result.simulation,
                                      result.models);
         PhaseTimes phases = result.phases;
         phases.add_since("writing", t);

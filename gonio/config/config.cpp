@@ -17,20 +17,22 @@ namespace gonio {
 
 namespace {
 
-const Key kSeed = Key::integer("seed", {0, 9.2e18}, "seed of every random stream, stored in the "
-                                                    "result")
+const Key kSeed = Key::integer("seed", {0, 9.2e18},
+                               "seed of every random stream, stored in the "
+                               "result")
                       .fallback(1.0);
-const Key kName = Key::string("name", {}, "case name (HDF5 group), of `A-Za-z0-9_.-+`")
-                      .note_default("file stem");
-const Key kCase = Key::tables("case", "the cases: each overrides any section above").note_default("one case");
-const Key kThetaI = Key::numbers("theta_i", {0, 90, false, true}, "incidence polar angle")
+const Key kName =
+    Key::string("name", {}, "case name (HDF5 group), of `A-Za-z0-9_.-+`").note_default("file stem");
+const Key kCase =
+    Key::tables("case", "the cases: each overrides any section above").note_default("one case");
+const Key kThetaI = Key::numbers("theta_i", {0, 90, false, true}, "incidence polar angle; a sweep")
                         .in_unit("degrees")
                         .note_default("— (`gonio run`, `gonio model`)");
-const Key kPhiI = Key::numbers("phi_i", {0, 360}, "incidence azimuth")
+const Key kPhiI = Key::numbers("phi_i", {0, 360}, "incidence azimuth; a sweep")
                       .in_unit("degrees")
                       .fallback(std::vector<double>{0.0});
-const Key kCells = Key::integer("cells", {1, 1e7}, "Beckers equal-area cells on the hemisphere")
-                       .fallback(3240.0);
+const Key kCells =
+    Key::integer("cells", {1, 1e7}, "Beckers equal-area cells on the hemisphere").fallback(3240.0);
 
 // The sections a case may hold, in the order of the README.
 const std::vector<std::string> kSections = {"ndf",    "material", "spectrum", "beam",
@@ -247,7 +249,9 @@ bool CaseConfig::needs_surface() const {
 void Config::require_beam(const std::string& command) const {
     for (size_t k = 0; k < cases.size(); ++k)
         if (cases[k].theta_i_deg.empty())
-            throw ConfigError(path, -1, cases.size() > 1 ? "case[" + std::to_string(k) + "].beam.theta_i" : "beam.theta_i",
+            throw ConfigError(path, -1,
+                              cases.size() > 1 ? "case[" + std::to_string(k) + "].beam.theta_i"
+                                               : "beam.theta_i",
                               "missing (" + command + " needs an incidence sweep); allowed " +
                                   kThetaI.range.describe() + " degrees");
 }
@@ -265,13 +269,28 @@ std::vector<KeyGroup> config_key_groups() {
 }
 
 std::string keys_markdown() {
-    std::string out = "| key | for | type and range | default | meaning |\n|---|---|---|---|---|\n";
+    // One row per key; a key that several components declare alike (the roughness of the five
+    // alpha families) is one row naming them all.
+    struct Row {
+        std::string key, owners, rest;
+    };
+    std::vector<Row> rows;
     for (const KeyGroup& g : config_key_groups())
         for (const Key& k : g.keys) {
-            std::string meaning = k.meaning + (k.cite.empty() ? "" : " [" + k.cite + "]");
-            out += "| `" + key_path(g, k) + "` | " + (g.owner.empty() ? "" : "`" + g.owner + "`") +
-                   " | " + k.type_text() + " | " + k.default_text() + " | " + meaning + " |\n";
+            const std::string rest = " | " + k.type_text() + " | " + k.default_text() + " | " +
+                                     k.meaning + (k.cite.empty() ? "" : " [" + k.cite + "]") +
+                                     " |\n";
+            const std::string owner = g.owner.empty() ? "" : "`" + g.owner + "`";
+            auto same = std::find_if(rows.begin(), rows.end(), [&](const Row& r) {
+                return r.key == key_path(g, k) && r.rest == rest && !r.owners.empty();
+            });
+            if (same != rows.end() && !owner.empty())
+                same->owners += ", " + owner;
+            else
+                rows.push_back({key_path(g, k), owner, rest});
         }
+    std::string out = "| key | for | type and range | default | meaning |\n|---|---|---|---|---|\n";
+    for (const Row& r : rows) out += "| `" + r.key + "` | " + r.owners + r.rest;
     return out;
 }
 
@@ -279,8 +298,8 @@ std::string keys_text() {
     std::string out;
     for (const KeyGroup& g : config_key_groups()) {
         out += "\n[" + (g.section.empty() ? std::string("top level") : g.section) + "]" +
-               (g.owner.empty() ? "" : " " + g.owner) + (g.summary.empty() ? "" : ": " + g.summary) +
-               "\n";
+               (g.owner.empty() ? "" : " " + g.owner) +
+               (g.summary.empty() ? "" : ": " + g.summary) + "\n";
         for (const Key& k : g.keys) {
             out += "  " + key_path(g, k) + "\n      " + k.type_text() + "; default " +
                    k.default_text() + "\n      " + k.meaning +

@@ -20,9 +20,9 @@ namespace gonio {
 
 struct CaseConfig {
     std::string name;
-    std::shared_ptr<const Ndf> ndf; // [ndf], built
-    double ndf_seconds = 0;         // the time it took (tables included)
-    FacetSpec material;             // [material] (and [spectrum])
+    std::shared_ptr<const Ndf> ndf;  // [ndf], built
+    double ndf_seconds = 0;          // the time it took (tables included)
+    FacetSpec material;              // [material] (and [spectrum])
     std::vector<double> theta_i_deg; // [beam]: each in [0, 90); empty when not given
     std::vector<double> phi_i_deg;   // each in [0, 360]
     int sensor_cells = 3240;         // [sensor]

@@ -30,20 +30,31 @@ class Handle {
 void silence_errors();
 void check(herr_t status, const char* what);
 
+// Attributes (replaced if they exist). Strings are variable-length UTF-8; a list of strings is
+// a 1-D array of them.
 void write_string_attribute(hid_t object, const std::string& name, const std::string& value);
+void write_string_list_attribute(hid_t object, const std::string& name,
+                                 const std::vector<std::string>& values);
 void write_double_attribute(hid_t object, const std::string& name, double value);
 void write_int_attribute(hid_t object, const std::string& name, long long value);
+// A scalar string attribute (fixed or variable length).
 std::string read_string_attribute(hid_t object, const std::string& name);
-bool has_attribute(hid_t object, const std::string& name);
+// A string attribute as a list: the elements of an array, or a scalar split at `separator`
+// (how format 1 stored lists; an empty string is an empty list).
+std::vector<std::string> read_string_list_attribute(hid_t object, const std::string& name,
+                                                    char separator = ',');
+// Whether the attribute is an array (of more than one element or of none) rather than a scalar.
+bool attribute_is_array(hid_t object, const std::string& name);
+double read_double_attribute(hid_t object, const std::string& name);
 
-// A 1-D float64 (or int32 when `integer`) coordinate, made a dimension scale named `name`.
+// A 1-D coordinate, float64 (or int32 when `integer`), made the dimension scale named `name`.
 Handle write_scale(hid_t group, const std::string& name, const std::vector<double>& values,
-                   const std::string& units, const std::string& description, bool integer = false);
+                   const std::string& units, const std::string& long_name, bool integer = false);
 
-// An N-D float64 dataset, chunked as `chunk`, deflate + shuffle.
+// An N-D float64 dataset, chunked as `chunk`, deflate + shuffle, with units and long_name.
 Handle write_dataset(hid_t group, const std::string& name, const std::vector<hsize_t>& dims,
                      const std::vector<hsize_t>& chunk, const double* data,
-                     const std::string& units, const std::string& description);
+                     const std::string& units, const std::string& long_name);
 
 std::vector<double> read_doubles(hid_t group, const std::string& name,
                                  std::vector<hsize_t>* dims = nullptr);

@@ -48,8 +48,23 @@ std::map<std::string, std::string> string_attributes(hid_t object) {
         std::string name(len, '\0');
         H5Aget_name(attr, len + 1, name.data());
         h5::Handle type(H5Aget_type(attr), H5Tclose, "attribute type");
-        if (H5Tget_class(type) == H5T_STRING) out[name] = h5::read_string_attribute(object, name);
+        if (H5Tget_class(type) == H5T_STRING && !h5::attribute_is_array(object, name))
+            out[name] = h5::read_string_attribute(object, name);
     }
+    return out;
+}
+
+// A list attribute (a string array in format 2, comma-separated in format 1); empty if absent.
+std::vector<std::string> list(hid_t object, const std::string& name) {
+    if (H5Aexists(object, name.c_str()) <= 0) return {};
+    return h5::read_string_list_attribute(object, name, ',');
+}
+
+// The phases listed in `phases` with their phase_<name>_seconds (format 2; none in format 1).
+std::vector<std::pair<std::string, double>> timings(hid_t object) {
+    std::vector<std::pair<std::string, double>> out;
+    for (const std::string& phase : list(object, "phases"))
+        out.emplace_back(phase, h5::read_double_attribute(object, "phase_" + phase + "_seconds"));
     return out;
 }
 
@@ -64,8 +79,17 @@ ResultSummary read_result_summary(const std::string& path) {
     ResultSummary s;
     s.path = path;
     s.attributes = string_attributes(file);
-    if (s.attributes.count("file_format") == 0)
+    const auto format = s.attributes.find("file_format");
+    if (format == s.attributes.end())
         throw std::runtime_error(path + ": not a gonio result file (no file_format attribute)");
+    if (format->second == "gonio-result 1")
+        s.format = 1;
+    else if (format->second == "gonio-result 2")
+        s.format = 2;
+    else
+        throw std::runtime_error(path + ": unknown file format '" + format->second +
+                                 "' (this gonio reads gonio-result 1 and 2)");
+    s.timings = timings(file);
     {
         h5::Handle attr(H5Aopen(file, "seed", H5P_DEFAULT), H5Aclose, "open seed");
         h5::check(H5Aread(attr, H5T_NATIVE_LLONG, &s.seed), "read seed");
@@ -75,6 +99,9 @@ ResultSummary read_result_summary(const std::string& path) {
         CaseSummary c;
         c.name = name;
         c.attributes = string_attributes(group);
+        c.models = list(group, "models");
+        c.stop = list(group, "stop");
+        c.timings = timings(group);
         c.theta_i_deg = h5::read_doubles(group, "theta_i");
         c.phi_i_deg = h5::read_doubles(group, "phi_i");
         c.cells = static_cast<int>(h5::read_doubles(group, "cell").size());

@@ -6,8 +6,8 @@
 #include <ctime>
 #include <filesystem>
 #include <hdf5_hl.h>
+#include <map>
 #include <stdexcept>
-#include <tuple>
 #include <unistd.h>
 
 namespace gonio {
@@ -57,7 +57,7 @@ ResultWriter::~ResultWriter() {
 }
 
 void ResultWriter::write_run(const Config& cfg, const std::string& command_line) {
-    h5::write_string_attribute(file_, "file_format", "gonio-result 1");
+    h5::write_string_attribute(file_, "file_format", "gonio-result 2");
     h5::write_string_attribute(file_, "gonio_version", kVersion);
     h5::write_string_attribute(file_, "git_hash", kGitHash);
     h5::write_string_attribute(file_, "command_line", command_line);
@@ -70,51 +70,70 @@ void ResultWriter::write_run(const Config& cfg, const std::string& command_line)
     h5::write_string_attribute(file_, "config_effective_toml", cfg.effective_toml);
     h5::write_string_attribute(file_, "conventions", conventions());
     h5::write_string_attribute(file_, "created_utc", utc_now());
-    std::string names;
-    for (const auto& c : cfg.cases) names += (names.empty() ? "" : ",") + c.name;
-    h5::write_string_attribute(file_, "cases", names);
+    std::vector<std::string> names;
+    for (const auto& c : cfg.cases) names.push_back(c.name);
+    h5::write_string_list_attribute(file_, "cases", names);
 }
 
-// A case's group with its coordinate scales, ready for datasets to attach them.
+// A case's group with its dimension scales, one per axis, and the names of the coordinate
+// variables along cell and channel; put() writes a named array against them.
 struct ResultWriter::CaseGroup {
-    h5::Handle group, theta_i, phi_i, cell, channel, order;
-    std::vector<h5::Handle> cell_coords, channel_coords;
-    size_t nt = 0, np = 0, ncell = 0, nc = 0;
+    h5::Handle group;
+    std::map<std::string, h5::Handle> scales; // dimension name -> its scale
+    std::string cell_coordinates, channel_coordinates;
 
-    void attach_incidence(hid_t ds) {
-        h5::check(H5DSattach_scale(ds, theta_i, 0), "attach theta_i");
-        h5::check(H5DSattach_scale(ds, phi_i, 1), "attach phi_i");
+    void add_scale(const std::string& name, const std::vector<double>& values,
+                   const std::string& units, const std::string& long_name, bool integer) {
+        scales[name] = h5::write_scale(group, name, values, units, long_name, integer);
     }
-    void attach_cells(hid_t ds, unsigned dim) {
-        h5::check(H5DSattach_scale(ds, cell, dim), "attach cell");
-        for (auto& h : cell_coords)
-            h5::check(H5DSattach_scale(ds, h, dim), "attach cell coordinate");
+    // A 1-D variable along `dim`, a coordinate of every variable that has that dimension.
+    void add_coordinate(const std::string& dim, const std::string& name,
+                        const std::vector<double>& values, const std::string& units,
+                        const std::string& long_name) {
+        put(name, Array({dim}, {values.size()}, units, long_name), &values);
+        std::string& list = dim == "cell" ? cell_coordinates : channel_coordinates;
+        list += (list.empty() ? "" : " ") + name;
     }
-    void attach_channels(hid_t ds, unsigned dim) {
-        h5::check(H5DSattach_scale(ds, channel, dim), "attach channel");
-        for (auto& h : channel_coords) h5::check(H5DSattach_scale(ds, h, dim), "attach wavelength");
+    // The array as dataset `name`, each dimension attached to its scale, chunked by incidence;
+    // long_name, if given, replaces the array's own.
+    h5::Handle put(const std::string& name, const Array& a,
+                   const std::vector<double>* data = nullptr, const std::string& long_name = "") {
+        std::vector<hsize_t> dims, chunk;
+        for (size_t k = 0; k < a.rank(); ++k) {
+            dims.push_back(a.shape[k]);
+            chunk.push_back(a.dims[k] == "theta_i" || a.dims[k] == "phi_i" ? 1 : a.shape[k]);
+        }
+        const std::vector<double>& v = data ? *data : a.data;
+        if (v.size() != a.count(0))
+            throw std::logic_error("ResultWriter: " + name + " has " + std::to_string(v.size()) +
+                                   " values for its shape");
+        h5::Handle d = h5::write_dataset(group, name, dims, chunk, v.data(), a.units,
+                                         long_name.empty() ? a.long_name : long_name);
+        std::string coordinates;
+        for (size_t k = 0; k < a.rank(); ++k) {
+            const auto scale = scales.find(a.dims[k]);
+            if (scale == scales.end())
+                throw std::logic_error("ResultWriter: no scale for dimension " + a.dims[k]);
+            h5::check(H5DSattach_scale(d, scale->second, unsigned(k)),
+                      ("attach " + a.dims[k] + " to " + name).c_str());
+            const std::string& c = a.dims[k] == "cell"      ? cell_coordinates
+                                   : a.dims[k] == "channel" ? channel_coordinates
+                                                            : std::string();
+            if (!c.empty() && a.rank() > 1) coordinates += (coordinates.empty() ? "" : " ") + c;
+        }
+        if (!coordinates.empty()) h5::write_string_attribute(d, "coordinates", coordinates);
+        return d;
     }
-    // [theta_i, phi_i, channel] per-incidence values.
-    void per_incidence(const std::string& name, const std::vector<double>& v,
-                       const std::string& units, const std::string& what) {
-        h5::Handle d =
-            h5::write_dataset(group, name, {nt, np, nc}, {1, 1, nc}, v.data(), units, what);
-        attach_incidence(d);
-        attach_channels(d, 2);
-    }
-    // [theta_i, phi_i, cell, channel] maps.
-    void per_cell(const std::string& name, const std::vector<double>& v, const std::string& units,
-                  const std::string& what) {
-        h5::Handle d = h5::write_dataset(group, name, {nt, np, ncell, nc}, {1, 1, ncell, nc},
-                                         v.data(), units, what);
-        attach_incidence(d);
-        attach_cells(d, 2);
-        attach_channels(d, 3);
+    // A figure and its standard error beside it (name_stderr).
+    void put(const std::string& name, const Estimate& e, const std::string& long_name = "") {
+        put(name, e.mean, nullptr, long_name);
+        put(name + "_stderr", e.error, nullptr,
+            long_name.empty() ? "" : "standard error of the " + long_name);
     }
 };
 
-ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const std::string& ndf_description,
-                                              const BeckersSensor& sensor) {
+ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const BeckersSensor& sensor,
+                                                const std::string& ndf_description) {
     using h5::Handle;
     CaseGroup g;
     Handle gcpl(H5Pcreate(H5P_GROUP_CREATE), H5Pclose, "group creation property list");
@@ -134,27 +153,25 @@ ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const std::
     h5::write_int_attribute(group, "sensor_cells", sensor.cell_count());
     h5::write_string_attribute(group, "sensor", "Beckers & Beckers 2012 equal-area hemisphere");
 
-    g.nt = c.theta_i_deg.size(), g.np = c.phi_i_deg.size();
-    g.ncell = sensor.cell_count(), g.nc = c.channels();
-    g.theta_i = h5::write_scale(group, "theta_i", c.theta_i_deg, "degree",
-                                "polar angle of the incident direction i");
-    g.phi_i = h5::write_scale(group, "phi_i", c.phi_i_deg, "degree",
-                              "azimuth of the incident direction i");
-    std::vector<double> index(g.ncell), channel(g.nc);
-    for (size_t k = 0; k < g.ncell; ++k) index[k] = static_cast<double>(k);
-    for (size_t k = 0; k < g.nc; ++k) channel[k] = static_cast<double>(k);
-    g.cell = h5::write_scale(group, "cell", index, "", "sensor cell index", true);
-    g.channel = h5::write_scale(group, "channel", channel, "",
-                                g.nc == 1 && c.material.wavelengths_nm.empty()
-                                    ? "spectral channel (achromatic material: one channel)"
-                                    : "spectral channel",
-                                true);
-    // Cell geometry: every coordinate is a dimension scale of the cell dimension.
+    const size_t ncell = sensor.cell_count(), nc = c.channels();
+    g.add_scale("theta_i", c.theta_i_deg, "degree", "polar angle of the incident direction i",
+                false);
+    g.add_scale("phi_i", c.phi_i_deg, "degree", "azimuth of the incident direction i", false);
+    std::vector<double> index(ncell), channel(nc);
+    for (size_t k = 0; k < ncell; ++k) index[k] = static_cast<double>(k);
+    for (size_t k = 0; k < nc; ++k) channel[k] = static_cast<double>(k);
+    g.add_scale("cell", index, "1", "sensor cell index", true);
+    g.add_scale("channel", channel, "1",
+                nc == 1 && c.material.wavelengths_nm.empty()
+                    ? "spectral channel (achromatic material: one channel)"
+                    : "spectral channel",
+                true);
+    // Cell geometry: coordinates along the cell dimension.
     auto coord = [&](const char* name, auto get, const char* units, const char* what, bool deg) {
-        std::vector<double> v(g.ncell);
-        for (size_t k = 0; k < g.ncell; ++k) v[k] = get(sensor.cell(static_cast<int>(k)));
+        std::vector<double> v(ncell);
+        for (size_t k = 0; k < ncell; ++k) v[k] = get(sensor.cell(static_cast<int>(k)));
         if (deg) v = to_degrees(v);
-        g.cell_coords.push_back(h5::write_scale(group, name, v, units, what));
+        g.add_coordinate("cell", name, v, units, what);
     };
     coord(
         "theta_center", [](const SensorCell& s) { return s.theta_center; }, "degree",
@@ -181,187 +198,93 @@ ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const std::
         "projected_solid_angle", [](const SensorCell& s) { return s.projected_solid_angle; }, "sr",
         "integral of cos(theta) over the cell", false);
     if (!c.material.wavelengths_nm.empty())
-        g.channel_coords.push_back(h5::write_scale(group, "wavelength", c.material.wavelengths_nm, "nm",
-                                                   "wavelength of the channel"));
+        g.add_coordinate("channel", "wavelength", c.material.wavelengths_nm, "nm",
+                         "wavelength of the channel");
     return g;
 }
 
-void ResultWriter::write_models(CaseGroup& g, const BeckersSensor& sensor,
-                                const std::vector<ModelResult>& models) {
-    std::string names;
+void ResultWriter::write_models(CaseGroup& g, const std::vector<ModelResult>& models) {
+    std::vector<std::string> names;
     for (const ModelResult& r : models) {
-        names += (names.empty() ? "" : ",") + r.name;
+        names.push_back(r.name);
         const std::string m = "model_" + r.name;
-        auto brdf_of = [&](const std::vector<double>& energy) {
-            std::vector<double> brdf(energy.size());
-            for (size_t k = 0; k < brdf.size(); ++k)
-                brdf[k] = energy[k] /
-                          sensor.cell(static_cast<int>((k / g.nc) % g.ncell)).projected_solid_angle;
-            return brdf;
-        };
-        g.per_cell(m, brdf_of(r.energy), "1/sr", r.description + ": cell averages");
-        g.per_cell(m + "_energy", r.energy, "1",
-                   r.description + ": fraction of the incident power");
-        g.per_incidence(m + "_albedo", r.albedo, "1", r.description + ": directional albedo");
-        if (!r.energy_stderr.empty()) { // a Monte Carlo model
-            g.per_cell(m + "_stderr", brdf_of(r.energy_stderr), "1/sr",
-                       "standard error of " + m + " (batch means)");
-            g.per_incidence(m + "_albedo_stderr", r.albedo_stderr, "1",
-                            "standard error of " + m + "_albedo (batch means)");
+        g.put(m, r.brdf);
+        g.put(m + "_energy", r.energy);
+        g.put(m + "_albedo", r.albedo);
+        if (!r.brdf_stderr.empty()) { // a Monte Carlo model
+            g.put(m + "_stderr", r.brdf_stderr, nullptr,
+                  "standard error of " + m + " (batch means)");
+            g.put(m + "_albedo_stderr", r.albedo_stderr, nullptr,
+                  "standard error of " + m + "_albedo (batch means)");
         }
         h5::write_string_attribute(g.group, m + "_compared_with", r.compared_with);
-        h5::Handle t = h5::write_dataset(g.group, m + "_seconds", {g.nt, g.np}, {1, 1},
-                                         r.seconds.data(), "s", "wall time of the evaluation");
-        g.attach_incidence(t);
-        if (!r.first_energy.empty()) { // the V-cavity's orders
-            g.per_cell(m + "_l1", brdf_of(r.first_energy), "1/sr",
-                       "single scattering in V-cavities");
-            g.per_incidence(m + "_l1_albedo", r.l1_albedo, "1", "single-scattering albedo");
-            g.per_incidence(m + "_l2_albedo", r.l2_albedo, "1", "second-order albedo");
-            g.per_incidence(m + "_l2plus_albedo", r.l2plus_albedo, "1",
-                            "multiple-scattering albedo");
+        g.put(m + "_seconds", r.seconds);
+        if (!r.l1.empty()) { // the V-cavity's orders
+            g.put(m + "_l1", r.l1);
+            g.put(m + "_l1_albedo", r.l1_albedo);
+            g.put(m + "_l2_albedo", r.l2_albedo);
+            g.put(m + "_l2plus_albedo", r.l2plus_albedo);
         }
     }
-    h5::write_string_attribute(g.group, "models", names);
+    h5::write_string_list_attribute(g.group, "models", names);
 }
 
-void ResultWriter::write_model_case(const CaseConfig& c, const std::string& ndf_description,
-                                    const BeckersSensor& sensor,
+void ResultWriter::write_model_case(const CaseConfig& c, const BeckersSensor& sensor,
+                                    const std::string& ndf_description,
                                     const std::vector<ModelResult>& models) {
-    CaseGroup g = open_case(c, ndf_description, sensor);
-    write_models(g, sensor, models);
+    CaseGroup g = open_case(c, sensor, ndf_description);
+    write_models(g, models);
 }
 
-void ResultWriter::write_simulation_case(const CaseConfig& c, const std::string& ndf_description,
-                                         const BeckersSensor& sensor,
+void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSensor& sensor,
+                                         const std::string& ndf_description,
                                          const SimulationResult& sim,
                                          const std::vector<ModelResult>& models) {
-    CaseGroup g = open_case(c, ndf_description, sensor);
+    if (!sim.complete())
+        throw std::logic_error("ResultWriter: the simulation of " + c.name + " is incomplete");
+    CaseGroup g = open_case(c, sensor, ndf_description);
     h5::write_string_attribute(g.group, "surface", sim.surface);
     h5::write_int_attribute(g.group, "rays_per_incidence", c.trace.rays);
     h5::write_int_attribute(g.group, "max_bounces", c.trace.max_bounces);
-    const size_t no = size_t(sim.orders), nt = g.nt, np = g.np, ncell = g.ncell, nc = g.nc;
-    std::vector<double> orders(no);
-    for (size_t k = 0; k < no; ++k) orders[k] = double(k + 1);
-    g.order = h5::write_scale(g.group, "order", orders, "",
-                              "bounce order; the last one holds every order from it up", true);
-    h5::write_int_attribute(g.order, "overflow_order", static_cast<long long>(no));
+    std::vector<double> orders(size_t(sim.orders()));
+    for (size_t k = 0; k < orders.size(); ++k) orders[k] = double(k + 1);
+    g.add_scale("order", orders, "1", "bounce order; the last one holds every order from it up",
+                true);
+    h5::write_int_attribute(g.scales["order"], "overflow_order", sim.orders());
 
-    const size_t maps = nt * np;
-    auto brdf_of = [&](std::vector<double> v) {
-        for (size_t k = 0; k < v.size(); ++k)
-            v[k] /= sensor.cell(static_cast<int>((k / nc) % ncell)).projected_solid_angle;
-        return v;
-    };
-    // One side of the sample (reflection on the upper sensor, transmission on the lower one): the
-    // distribution per order (energy over the cell's projected solid angle, the same for a cell
-    // and its mirror image), the first order, the higher orders and all orders, and their albedos,
-    // each with its standard error.
+    // One side of the sample (reflection on the upper sensor, transmission on the lower one).
     struct SideNames {
-        const char *dist, *energy, *first, *higher, *all, *a1, *a2, *a2plus, *aall, *what;
+        const char *dist, *energy, *first, *higher, *all, *a1, *a2, *a2plus, *aall;
     };
     auto write_side = [&](const SideNames& n, const SimulatedSide& side) {
-        const std::string what = n.what;
-        for (bool err : {false, true}) {
-            const std::string suffix = err ? "_stderr" : "";
-            const std::string about = err ? "standard error of the " : "";
-            const std::vector<double> dist = brdf_of(err ? side.energy_stderr : side.energy);
-            h5::Handle d = h5::write_dataset(
-                g.group, n.dist + suffix, {nt, np, no, ncell, nc}, {1, 1, no, ncell, nc},
-                dist.data(), "1/sr", about + "simulated " + what + " per bounce order, cells");
-            g.attach_incidence(d);
-            h5::check(H5DSattach_scale(d, g.order, 2), "attach order");
-            g.attach_cells(d, 3);
-            g.attach_channels(d, 4);
-            h5::Handle e = h5::write_dataset(
-                g.group, n.energy + suffix, {nt, np, no, nc}, {1, 1, no, nc},
-                (err ? side.order_energy_stderr : side.order_energy).data(), "1",
-                about + "fraction of the incident power per bounce order (" + what + ")");
-            g.attach_incidence(e);
-            h5::check(H5DSattach_scale(e, g.order, 2), "attach order");
-            g.attach_channels(e, 3);
-        }
-        const std::vector<double> dist = brdf_of(side.energy),
-                                  dist_err = brdf_of(side.energy_stderr);
-        std::vector<double> first(maps * ncell * nc), first_err(maps * ncell * nc),
-            all(maps * ncell * nc, 0.0), higher(maps * ncell * nc);
-        std::vector<double> a1(maps * nc), a2(maps * nc), aall(maps * nc, 0.0),
-            a2plus(maps * nc, 0.0), a1_err(maps * nc), a2_err(maps * nc);
-        for (size_t m = 0; m < maps; ++m)
-            for (size_t o = 0; o < no; ++o)
-                for (size_t c2 = 0; c2 < ncell * nc; ++c2) {
-                    const size_t i = (m * no + o) * ncell * nc + c2;
-                    if (o == 0) first[m * ncell * nc + c2] = dist[i];
-                    if (o == 0) first_err[m * ncell * nc + c2] = dist_err[i];
-                    all[m * ncell * nc + c2] += dist[i];
-                }
-        for (size_t k = 0; k < first.size(); ++k) higher[k] = all[k] - first[k];
-        for (size_t m = 0; m < maps; ++m)
-            for (size_t o = 0; o < no; ++o)
-                for (size_t k = 0; k < nc; ++k) {
-                    const size_t i = (m * no + o) * nc + k;
-                    const double v = side.order_energy[i];
-                    aall[m * nc + k] += v;
-                    if (o == 0)
-                        a1[m * nc + k] = v, a1_err[m * nc + k] = side.order_energy_stderr[i];
-                    if (o == 1)
-                        a2[m * nc + k] = v, a2_err[m * nc + k] = side.order_energy_stderr[i];
-                    if (o >= 1) a2plus[m * nc + k] += v;
-                }
-        auto with_error = [&](auto write, const std::string& name, const std::vector<double>& v,
-                              const std::vector<double>& err, const char* units,
-                              const std::string& about) {
-            (g.*write)(name, v, units, about);
-            (g.*write)(name + "_stderr", err, units, "standard error of the " + about);
-        };
-        with_error(&CaseGroup::per_cell, n.first, first, first_err, "1/sr",
-                   "simulated single-bounce " + what);
-        with_error(&CaseGroup::per_cell, n.higher, higher, brdf_of(side.higher_stderr), "1/sr",
-                   "simulated multiple-bounce " + what);
-        with_error(&CaseGroup::per_cell, n.all, all, brdf_of(side.all_stderr), "1/sr",
-                   "simulated " + what + ", all orders");
-        with_error(&CaseGroup::per_incidence, n.a1, a1, a1_err, "1",
-                   "simulated single-bounce albedo (" + what + ")");
-        with_error(&CaseGroup::per_incidence, n.a2, a2, a2_err, "1",
-                   "simulated second-order albedo (" + what + ")");
-        with_error(&CaseGroup::per_incidence, n.a2plus, a2plus, side.higher_albedo_stderr, "1",
-                   "simulated multiple-bounce albedo (" + what + ")");
-        with_error(&CaseGroup::per_incidence, n.aall, aall, side.all_albedo_stderr, "1",
-                   "simulated albedo, all orders (" + what + ")");
+        g.put(n.dist, side.distribution);
+        g.put(n.energy, side.order_energy);
+        g.put(n.first, side.first);
+        g.put(n.higher, side.higher);
+        g.put(n.all, side.all);
+        g.put(n.a1, side.first_albedo);
+        g.put(n.a2, side.second_albedo);
+        g.put(n.a2plus, side.higher_albedo);
+        g.put(n.aall, side.all_albedo);
     };
     write_side({"brdf", "energy", "brdf_l1", "brdf_l2plus", "brdf_linf", "l1_albedo", "l2_albedo",
-                "l2plus_albedo", "linf_albedo", "BRDF"},
+                "l2plus_albedo", "linf_albedo"},
                sim.reflected);
     if (!sim.transmitted.empty())
         write_side({"btdf", "transmitted_energy", "btdf_t1", "btdf_t2plus", "btdf_tinf",
-                    "t1_albedo", "t2_albedo", "t2plus_albedo", "transmitted_albedo",
-                    "BTDF, lower sensor (cell k mirrors upper cell k)"},
+                    "t1_albedo", "t2_albedo", "t2plus_albedo", "transmitted_albedo"},
                    sim.transmitted);
-    g.per_incidence("ledger_absorbed", sim.absorbed, "1", "absorbed by the facets");
-    g.per_incidence("ledger_capped", sim.capped, "1", "cut by the bounce cap");
-    g.per_incidence("ledger_lost", sim.lost, "1", "lost (crack or endless ray): should be 0");
-    g.per_incidence("ledger_absorbed_stderr", sim.absorbed_stderr, "1",
-                    "standard error of ledger_absorbed");
-    g.per_incidence("ledger_capped_stderr", sim.capped_stderr, "1",
-                    "standard error of ledger_capped");
-    g.per_incidence("ledger_lost_stderr", sim.lost_stderr, "1", "standard error of ledger_lost");
-    g.per_incidence("ledger_unaccounted", sim.unaccounted, "1",
-                    "1 - (reflected + transmitted + absorbed + capped + lost): zero to round-off");
-    for (auto [name, v, units, what] :
-         {std::tuple<const char*, const std::vector<double>*, const char*, const char*>{
-              "rays", &sim.rays, "", "rays traced"},
-          {"segments", &sim.segments, "", "ray segments (rtcIntersect1 calls)"},
-          {"trace_seconds", &sim.seconds, "s", "wall time of the tracing"},
-          {"rounds", &sim.rounds, "", "rounds of rays given to every batch"},
-          {"achieved_error", &sim.achieved_error, "1",
-           "the accuracy target's relative standard error when the run stopped (-1: no target)"}}) {
-        h5::Handle d = h5::write_dataset(g.group, name, {nt, np}, {1, 1}, v->data(), units, what);
-        g.attach_incidence(d);
-    }
+    g.put("ledger_absorbed", sim.absorbed);
+    g.put("ledger_capped", sim.capped);
+    g.put("ledger_lost", sim.lost);
+    g.put("ledger_unaccounted", sim.unaccounted);
+    g.put("rays", sim.rays);
+    g.put("segments", sim.segments);
+    g.put("trace_seconds", sim.seconds);
+    g.put("rounds", sim.rounds);
+    g.put("achieved_error", sim.achieved_error);
     h5::write_int_attribute(g.group, "batches", c.trace.batches);
-    std::string stops;
-    for (const std::string& s : sim.stop) stops += (stops.empty() ? "" : ",") + s;
-    h5::write_string_attribute(g.group, "stop", stops);
+    h5::write_string_list_attribute(g.group, "stop", sim.stop);
     if (c.trace.target.active()) {
         h5::write_string_attribute(g.group, "target_quantity", name_of(c.trace.target.quantity));
         h5::write_double_attribute(g.group, "target_relative_error", c.trace.target.relative_error);
@@ -369,49 +292,41 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const std::string&
         h5::write_double_attribute(g.group, "target_max_rays", double(c.trace.target.max_rays));
         h5::write_double_attribute(g.group, "target_max_seconds", c.trace.target.max_seconds);
     }
-    write_models(g, sensor, models);
+    write_models(g, models);
     // Each model against what it models (single scattering or every order), with errors.
     for (size_t mi = 0; mi < models.size(); ++mi) {
         const ModelResult& model = models[mi];
-        const Comparison& cmp = sim.comparisons[mi];
+        const ComparisonArrays& cmp = sim.comparisons.at(mi);
         const std::string what = model.compared_with == "linf" ? "every order" : "L1";
         const std::string n = model.name;
-        g.per_incidence(n + "_relative_difference", cmp.relative_difference, "1",
-                        "(simulated " + what + " albedo - model_" + n + " albedo) / model_" + n +
-                            " albedo");
-        g.per_incidence(n + "_relative_difference_stderr", cmp.relative_difference_stderr, "1",
-                        "standard error of " + n + "_relative_difference");
-        g.per_incidence(n + "_sigmas", cmp.sigmas, "1",
-                        "(simulated " + what + " albedo - model_" + n +
-                            " albedo) in standard errors of the difference");
-        g.per_incidence(
-            n + "_distance", cmp.distance, "1",
-            "sum |f_sim - f_model| Omega_perp / sum f_model Omega_perp over the cells (" + what +
-                " against model_" + n + ")");
-        g.per_incidence(n + "_distance_stderr", cmp.distance_stderr, "1",
-                        "standard error of " + n + "_distance (jackknife over the batches)");
-        g.per_cell(n + "_ratio", cmp.ratio, "1",
-                   "simulated " + what + " / model_" + n +
-                       " per cell (0 where the model is below 1e-12 of its peak)");
-        g.per_cell(n + "_ratio_stderr", cmp.ratio_stderr, "1", "standard error of " + n + "_ratio");
+        g.put(n + "_relative_difference", cmp.relative_difference,
+              "(simulated " + what + " albedo - model_" + n + " albedo) / model_" + n + " albedo");
+        g.put(n + "_sigmas", cmp.sigmas, nullptr,
+              "(simulated " + what + " albedo - model_" + n +
+                  " albedo) in standard errors of the difference");
+        g.put(n + "_distance", cmp.distance,
+              "sum |f_sim - f_model| Omega_perp / sum f_model Omega_perp over the cells (" + what +
+                  " against model_" + n + ")");
+        g.put(n + "_ratio", cmp.ratio,
+              "simulated " + what + " / model_" + n +
+                  " per cell (0 where the model is below 1e-12 of its peak)");
     }
 }
 
-void ResultWriter::write_timings(const std::string& case_name,
-                                 const std::vector<std::pair<std::string, double>>& phases) {
+void ResultWriter::write_timings(const std::string& case_name_or_empty,
+                                 const std::vector<std::pair<std::string, double>>& phase_seconds) {
     h5::Handle group;
-    hid_t where = file_;
-    if (!case_name.empty()) {
-        group = h5::Handle(H5Gopen2(file_, case_name.c_str(), H5P_DEFAULT), H5Gclose,
-                           ("open group " + case_name).c_str());
-        where = group;
+    if (!case_name_or_empty.empty())
+        group =
+            h5::Handle(H5Gopen2(file_, case_name_or_empty.c_str(), H5P_DEFAULT), H5Gclose,
+                       ("open group " + case_name_or_empty + " (write the case first)").c_str());
+    const hid_t target = case_name_or_empty.empty() ? hid_t(file_) : hid_t(group);
+    std::vector<std::string> names;
+    for (const auto& [name, seconds] : phase_seconds) {
+        names.push_back(name);
+        h5::write_double_attribute(target, "phase_" + name + "_seconds", seconds);
     }
-    std::string names;
-    for (const auto& [name, seconds] : phases) {
-        h5::write_double_attribute(where, "phase_" + name + "_seconds", seconds);
-        names += (names.empty() ? "" : ",") + name;
-    }
-    h5::write_string_attribute(where, "phases", names);
+    h5::write_string_list_attribute(target, "phases", names);
 }
 
 void ResultWriter::commit() {

@@ -1,8 +1,11 @@
 #pragma once
-// The HDF5 result file (layout in the README, "Result file"). One file per run, one group per
-// case; coordinates are HDF5 dimension scales with units; the config, program version, git hash,
-// seed and command line are stored in the root attributes. The file is written under a temporary
-// name and renamed when complete, so a failed run leaves nothing half-written.
+// The HDF5 result file, format "gonio-result 2" (layout in the README, "Result file"). One file
+// per run, one group per case; one dimension scale per axis (theta_i, phi_i, order, cell,
+// channel), the cell geometry and wavelengths as variables along cell and channel named in each
+// data variable's `coordinates` attribute (netCDF style: xarray opens a case as it is); the
+// config, program version, git hash, seed and command line are stored in the root attributes.
+// The writer only serialises: every figure comes computed, as named arrays. The file is written
+// under a temporary name and renamed when complete, so a failed run leaves nothing half-written.
 #include "gonio/config/config.h"
 #include "gonio/io/hdf5_handles.h"
 #include "gonio/io/simulation_result.h"
@@ -10,6 +13,7 @@
 #include "sensor/beckers_sensor.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace gonio {
@@ -23,21 +27,21 @@ class ResultWriter {
     ResultWriter& operator=(const ResultWriter&) = delete;
 
     void write_run(const Config& cfg, const std::string& command_line);
-    // `ndf_description` describes the case's distribution (its Ndf::describe()).
-    void write_model_case(const CaseConfig& c, const std::string& ndf_description,
-                          const BeckersSensor& sensor, const std::vector<ModelResult>& models);
+    void write_model_case(const CaseConfig& c, const BeckersSensor& sensor,
+                          const std::string& ndf_description,
+                          const std::vector<ModelResult>& models);
     // The simulated BRDF per order, L1 / L2+ / L-infinity (and the BTDF of a transmissive
     // material on the lower sensor), the ledger, and the models on the same cells, each with
     // its comparison against the simulated quantity it models (albedos, relative difference,
     // per-cell relative L1 distance, ratio map); every simulated figure with its standard error
     // beside it (name_stderr).
-    void write_simulation_case(const CaseConfig& c, const std::string& ndf_description,
-                               const BeckersSensor& sensor, const SimulationResult& sim,
+    void write_simulation_case(const CaseConfig& c, const BeckersSensor& sensor,
+                               const std::string& ndf_description, const SimulationResult& sim,
                                const std::vector<ModelResult>& models);
-    // Wall time per phase, as attributes phase_<name>_seconds and the list `phases`: of a case
-    // (its group), or of the whole run (case_name empty: the root).
-    void write_timings(const std::string& case_name,
-                       const std::vector<std::pair<std::string, double>>& phases);
+    // Wall time per phase, in order: attributes phase_<name>_seconds and the list `phases` on the
+    // case's group (written before), or on the root with an empty case name.
+    void write_timings(const std::string& case_name_or_empty,
+                       const std::vector<std::pair<std::string, double>>& phase_seconds);
     // Closes the file and renames it to its final path.
     void commit();
 
@@ -45,10 +49,9 @@ class ResultWriter {
 
   private:
     struct CaseGroup;
-    CaseGroup open_case(const CaseConfig& c, const std::string& ndf_description,
-                        const BeckersSensor& sensor);
-    void write_models(CaseGroup& g, const BeckersSensor& sensor,
-                      const std::vector<ModelResult>& models);
+    CaseGroup open_case(const CaseConfig& c, const BeckersSensor& sensor,
+                        const std::string& ndf_description);
+    void write_models(CaseGroup& g, const std::vector<ModelResult>& models);
 
     std::string path_, tmp_path_;
     h5::Handle file_;

@@ -2,60 +2,162 @@
 
 #include "core/batch_means.h"
 
+#include <stdexcept>
+
 namespace gonio {
 
 namespace {
 
-void append(std::vector<double>& to, const std::vector<double>& v) {
-    to.insert(to.end(), v.begin(), v.end());
+Estimate estimate(const std::vector<std::string>& dims, const std::vector<size_t>& shape,
+                  const std::string& units, const std::string& long_name) {
+    return {Array(dims, shape, units, long_name),
+            Array(dims, shape, units, "standard error of the " + long_name)};
 }
 
-// One side of a trace: its means, and the errors of sums over orders taken batch by batch.
-void append_side(SimulatedSide& side, const TraceResult& r, const std::vector<double>& energy,
-                 const std::vector<double>& energy_stderr, const std::vector<double>& batches,
-                 const std::vector<double>& order_energy,
-                 const std::vector<double>& order_energy_stderr,
-                 const std::vector<double>& order_batches) {
-    const int B = r.batches, no = r.orders;
-    append(side.energy, energy), append(side.energy_stderr, energy_stderr);
-    append(side.order_energy, order_energy), append(side.order_energy_stderr, order_energy_stderr);
-    append(side.higher_stderr, batch_stderr(sum_orders(batches, B, no, 1, no), B));
-    append(side.all_stderr, batch_stderr(sum_orders(batches, B, no, 0, no), B));
-    append(side.higher_albedo_stderr, batch_stderr(sum_orders(order_batches, B, no, 1, no), B));
-    append(side.all_albedo_stderr, batch_stderr(sum_orders(order_batches, B, no, 0, no), B));
+// Orders from..to-1 of values stored [order][n], summed (one order: that order alone).
+std::vector<double> orders_of(const std::vector<double>& v, int orders, int from, int to) {
+    return sum_orders(v, 1, orders, from, to);
 }
 
-void append(Comparison& to, const Comparison& c) {
-    for (auto field :
-         {&Comparison::sim_albedo, &Comparison::sim_albedo_stderr, &Comparison::model_albedo,
-          &Comparison::model_albedo_stderr, &Comparison::relative_difference,
-          &Comparison::relative_difference_stderr, &Comparison::sigmas, &Comparison::distance,
-          &Comparison::distance_stderr, &Comparison::ratio, &Comparison::ratio_stderr})
-        append(to.*field, c.*field);
+// The same sum of batches stored [batch][order][n], and its standard error (batch means).
+std::vector<double> orders_stderr(const std::vector<double>& batches, int B, int orders, int from,
+                                  int to) {
+    return batch_stderr(sum_orders(batches, B, orders, from, to), B);
 }
 
 } // namespace
 
-void SimulationResult::append(const TraceResult& r, const std::vector<Comparison>& models) {
-    append_side(reflected, r, r.energy, r.energy_stderr, r.energy_batches, r.ledger.reflected,
-                r.ledger_stderr.reflected, r.ledger_batches.reflected);
+SimulationResult::SimulationResult(std::vector<double> theta_i_deg, std::vector<double> phi_i_deg,
+                                   const BeckersSensor& sensor)
+    : theta_i_deg_(std::move(theta_i_deg)), phi_i_deg_(std::move(phi_i_deg)) {
+    for (int k = 0; k < sensor.cell_count(); ++k)
+        projected_solid_angle_.push_back(sensor.cell(k).projected_solid_angle);
+}
+
+void SimulationResult::allocate(const TraceResult& r, size_t models) {
+    orders_ = r.orders;
+    const size_t nt = theta_i_deg_.size(), np = phi_i_deg_.size(), no = size_t(r.orders),
+                 ncell = size_t(r.cells), nc = size_t(r.channels);
+    if (ncell != projected_solid_angle_.size())
+        throw std::logic_error("SimulationResult: a trace on another sensor");
+    const std::vector<std::string> per_order_cell{"theta_i", "phi_i", "order", "cell", "channel"},
+        per_order{"theta_i", "phi_i", "order", "channel"},
+        per_cell{"theta_i", "phi_i", "cell", "channel"}, per_channel{"theta_i", "phi_i", "channel"},
+        per_incidence{"theta_i", "phi_i"};
+    const std::vector<size_t> s5{nt, np, no, ncell, nc}, s4o{nt, np, no, nc}, s4{nt, np, ncell, nc},
+        s3{nt, np, nc}, s2{nt, np};
+    auto side = [&](SimulatedSide& s, const std::string& what) {
+        s.distribution =
+            estimate(per_order_cell, s5, "1/sr", "simulated " + what + " per bounce order, cells");
+        s.order_energy = estimate(per_order, s4o, "1",
+                                  "fraction of the incident power per bounce order (" + what + ")");
+        s.first = estimate(per_cell, s4, "1/sr", "simulated single-bounce " + what);
+        s.higher = estimate(per_cell, s4, "1/sr", "simulated multiple-bounce " + what);
+        s.all = estimate(per_cell, s4, "1/sr", "simulated " + what + ", all orders");
+        s.first_albedo =
+            estimate(per_channel, s3, "1", "simulated single-bounce albedo (" + what + ")");
+        s.second_albedo =
+            estimate(per_channel, s3, "1", "simulated second-order albedo (" + what + ")");
+        s.higher_albedo =
+            estimate(per_channel, s3, "1", "simulated multiple-bounce albedo (" + what + ")");
+        s.all_albedo =
+            estimate(per_channel, s3, "1", "simulated albedo, all orders (" + what + ")");
+    };
+    side(reflected, "BRDF");
     if (!r.transmitted.empty())
-        append_side(transmitted, r, r.transmitted, r.transmitted_stderr, r.transmitted_batches,
-                    r.ledger.transmitted, r.ledger_stderr.transmitted,
-                    r.ledger_batches.transmitted);
-    using gonio::append;
-    append(absorbed, r.ledger.absorbed), append(absorbed_stderr, r.ledger_stderr.absorbed);
-    append(capped, r.ledger.capped), append(capped_stderr, r.ledger_stderr.capped);
-    append(lost, r.ledger.lost), append(lost_stderr, r.ledger_stderr.lost);
-    append(unaccounted, r.ledger.unaccounted);
-    rays.push_back(double(r.rays));
-    segments.push_back(double(r.segments));
-    seconds.push_back(r.seconds);
-    rounds.push_back(double(r.rounds));
-    achieved_error.push_back(r.achieved_error);
+        side(transmitted, "BTDF, lower sensor (cell k mirrors upper cell k)");
+    absorbed = estimate(per_channel, s3, "1", "fraction absorbed by the facets");
+    capped = estimate(per_channel, s3, "1", "fraction cut by the bounce cap");
+    lost = estimate(per_channel, s3, "1", "fraction lost (crack or endless ray): should be 0");
+    unaccounted = Array(per_channel, s3, "1",
+                        "1 - (reflected + transmitted + absorbed + capped + lost): zero to "
+                        "round-off");
+    rays = Array(per_incidence, s2, "1", "rays traced");
+    segments = Array(per_incidence, s2, "1", "ray segments (rtcIntersect1 calls)");
+    seconds = Array(per_incidence, s2, "s", "wall time of the tracing");
+    rounds = Array(per_incidence, s2, "1", "rounds of rays given to every batch");
+    achieved_error =
+        Array(per_incidence, s2, "1",
+              "the accuracy target's relative standard error when the run stopped (-1: no target)");
+    comparisons.assign(models, {});
+    for (ComparisonArrays& c : comparisons) {
+        c.relative_difference = estimate(per_channel, s3, "1", "relative difference of albedos");
+        c.distance = estimate(per_channel, s3, "1", "relative L1 distance of the cells");
+        c.sigmas = Array(per_channel, s3, "1", "albedo difference in standard errors");
+        c.ratio = estimate(per_cell, s4, "1", "simulated / model per cell");
+    }
+}
+
+void SimulationResult::append(const TraceResult& r, const std::vector<Comparison>& models) {
+    if (done_ == 0) allocate(r, models.size());
+    if (complete()) throw std::logic_error("SimulationResult: more incidences than the sweep");
+    if (r.orders != orders_ || models.size() != comparisons.size())
+        throw std::logic_error("SimulationResult: an incidence of another layout");
+    const size_t t = done_ / phi_i_deg_.size(), p = done_ % phi_i_deg_.size();
+    const size_t nc = size_t(r.channels), ncell = size_t(r.cells);
+    const int B = r.batches, no = r.orders;
+    // Energy over the cell's projected solid angle: the same for a cell and its mirror image.
+    auto brdf_of = [&](std::vector<double> v) {
+        for (size_t k = 0; k < v.size(); ++k) v[k] /= projected_solid_angle_[(k / nc) % ncell];
+        return v;
+    };
+    auto side = [&](SimulatedSide& s, const std::vector<double>& energy,
+                    const std::vector<double>& energy_stderr, const std::vector<double>& batches,
+                    const std::vector<double>& order_energy,
+                    const std::vector<double>& order_energy_stderr,
+                    const std::vector<double>& order_batches) {
+        const std::vector<double> dist = brdf_of(energy), dist_err = brdf_of(energy_stderr);
+        s.distribution.mean.put({t, p}, dist);
+        s.distribution.error.put({t, p}, dist_err);
+        s.order_energy.mean.put({t, p}, order_energy);
+        s.order_energy.error.put({t, p}, order_energy_stderr);
+        s.first.mean.put({t, p}, orders_of(dist, no, 0, 1));
+        s.first.error.put({t, p}, orders_of(dist_err, no, 0, 1));
+        s.higher.mean.put({t, p}, orders_of(dist, no, 1, no));
+        s.higher.error.put({t, p}, brdf_of(orders_stderr(batches, B, no, 1, no)));
+        s.all.mean.put({t, p}, orders_of(dist, no, 0, no));
+        s.all.error.put({t, p}, brdf_of(orders_stderr(batches, B, no, 0, no)));
+        s.first_albedo.mean.put({t, p}, orders_of(order_energy, no, 0, 1));
+        s.first_albedo.error.put({t, p}, orders_of(order_energy_stderr, no, 0, 1));
+        if (no > 1) { // else no second order: zeros
+            s.second_albedo.mean.put({t, p}, orders_of(order_energy, no, 1, 2));
+            s.second_albedo.error.put({t, p}, orders_of(order_energy_stderr, no, 1, 2));
+        }
+        s.higher_albedo.mean.put({t, p}, orders_of(order_energy, no, 1, no));
+        s.higher_albedo.error.put({t, p}, orders_stderr(order_batches, B, no, 1, no));
+        s.all_albedo.mean.put({t, p}, orders_of(order_energy, no, 0, no));
+        s.all_albedo.error.put({t, p}, orders_stderr(order_batches, B, no, 0, no));
+    };
+    side(reflected, r.energy, r.energy_stderr, r.energy_batches, r.ledger.reflected,
+         r.ledger_stderr.reflected, r.ledger_batches.reflected);
+    if (!transmitted.empty())
+        side(transmitted, r.transmitted, r.transmitted_stderr, r.transmitted_batches,
+             r.ledger.transmitted, r.ledger_stderr.transmitted, r.ledger_batches.transmitted);
+    absorbed.mean.put({t, p}, r.ledger.absorbed);
+    absorbed.error.put({t, p}, r.ledger_stderr.absorbed);
+    capped.mean.put({t, p}, r.ledger.capped);
+    capped.error.put({t, p}, r.ledger_stderr.capped);
+    lost.mean.put({t, p}, r.ledger.lost);
+    lost.error.put({t, p}, r.ledger_stderr.lost);
+    unaccounted.put({t, p}, r.ledger.unaccounted);
+    rays.at({t, p}) = double(r.rays);
+    segments.at({t, p}) = double(r.segments);
+    seconds.at({t, p}) = r.seconds;
+    rounds.at({t, p}) = double(r.rounds);
+    achieved_error.at({t, p}) = r.achieved_error;
     stop.push_back(r.stop);
-    comparisons.resize(models.size());
-    for (size_t m = 0; m < models.size(); ++m) append(comparisons[m], models[m]);
+    for (size_t m = 0; m < models.size(); ++m) {
+        ComparisonArrays& c = comparisons[m];
+        const Comparison& x = models[m];
+        c.relative_difference.mean.put({t, p}, x.relative_difference);
+        c.relative_difference.error.put({t, p}, x.relative_difference_stderr);
+        c.distance.mean.put({t, p}, x.distance);
+        c.distance.error.put({t, p}, x.distance_stderr);
+        c.sigmas.put({t, p}, x.sigmas);
+        c.ratio.mean.put({t, p}, x.ratio);
+        c.ratio.error.put({t, p}, x.ratio_stderr);
+    }
+    ++done_;
 }
 
 } // namespace gonio

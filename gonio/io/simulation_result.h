@@ -1,36 +1,73 @@
 #pragma once
-// The simulation of one case over its sweep (theta_i major, then phi_i), as the result file
-// stores it: means with their standard errors, and each model's comparison with the simulation.
+// The simulation of one case over its sweep, as the result file stores it: typed arrays with
+// named dimensions (core/named_array.h) over theta_i, phi_i, order, cell and channel, each with
+// its standard error, and each model's comparison with the simulation. Every derived quantity
+// (L1, L2+ and L-infinity maps and albedos, their transmitted counterparts and all their errors)
+// is computed here, once, from each incidence's trace and its batches.
+#include "core/named_array.h"
 #include "gonio/model/model_comparison.h"
 #include "gonio/trace/trace_result.h"
+#include "sensor/beckers_sensor.h"
 
 #include <string>
 #include <vector>
 
 namespace gonio {
 
-// One side of the sample: reflection (upper sensor) or transmission (lower sensor).
-struct SimulatedSide {
-    std::vector<double> energy, energy_stderr;             // [theta_i][phi_i][order][cell][channel]
-    std::vector<double> order_energy, order_energy_stderr; // [theta_i][phi_i][order][channel]
-    // Standard errors of orders 2 and up and of every order: per cell [theta_i][phi_i][cell]
-    // [channel] and summed over the cells [theta_i][phi_i][channel].
-    std::vector<double> higher_stderr, all_stderr, higher_albedo_stderr, all_albedo_stderr;
-    bool empty() const { return energy.empty(); }
+// A Monte Carlo figure: the mean and its standard error (batch means), of the same layout.
+struct Estimate {
+    Array mean, error;
+    bool empty() const { return mean.empty(); }
 };
 
-struct SimulationResult {
-    int orders = 0;                       // K + 1: orders 1..K, then "K+1 or more"
-    SimulatedSide reflected, transmitted; // transmitted: transmissive materials only
-    std::vector<double> absorbed, capped, lost, unaccounted; // [theta_i][phi_i][channel]
-    std::vector<double> absorbed_stderr, capped_stderr, lost_stderr;
-    std::vector<double> rays, segments, seconds, rounds, achieved_error; // [theta_i][phi_i]
-    std::vector<std::string> stop;                                       // [theta_i][phi_i]
-    std::vector<Comparison> comparisons; // per model of the case, over the sweep
-    std::string surface;                 // where the surface came from (cache path, input)
+// One side of the sample: reflection (upper sensor) or transmission (lower sensor).
+struct SimulatedSide {
+    // [theta_i, phi_i, order, cell, channel], 1/sr: cell averages E_c / projected solid angle.
+    Estimate distribution;
+    // [theta_i, phi_i, order, channel]: fraction of the incident power per order.
+    Estimate order_energy;
+    // [theta_i, phi_i, cell, channel], 1/sr: single, multiple (2 and up) and every order.
+    Estimate first, higher, all;
+    // [theta_i, phi_i, channel]: albedos of order 1, order 2, orders 2 and up, every order.
+    Estimate first_albedo, second_albedo, higher_albedo, all_albedo;
+    bool empty() const { return distribution.empty(); }
+};
 
-    // Appends one incidence's trace and its models' comparisons (in the case's model order).
+// One model against the simulated quantity it models, over the sweep.
+struct ComparisonArrays {
+    Estimate relative_difference, distance; // [theta_i, phi_i, channel]
+    Array sigmas;                           // [theta_i, phi_i, channel]
+    Estimate ratio;                         // [theta_i, phi_i, cell, channel]
+};
+
+class SimulationResult {
+  public:
+    SimulationResult() = default;
+    // A sweep of n_theta x n_phi incidences (theta_i major) on `sensor`'s cells.
+    SimulationResult(std::vector<double> theta_i_deg, std::vector<double> phi_i_deg,
+                     const BeckersSensor& sensor);
+
+    // Appends the next incidence's trace and its models' comparisons (in the case's model order).
     void append(const TraceResult& r, const std::vector<Comparison>& models);
+    // Incidences appended so far, and whether the sweep is complete.
+    size_t incidences() const { return done_; }
+    bool complete() const { return done_ == theta_i_deg_.size() * phi_i_deg_.size(); }
+    int orders() const { return orders_; } // K + 1: orders 1..K, then "K+1 or more"
+
+    SimulatedSide reflected, transmitted; // transmitted: transmissive materials only
+    Estimate absorbed, capped, lost;      // [theta_i, phi_i, channel]
+    Array unaccounted;                    // [theta_i, phi_i, channel]
+    Array rays, segments, seconds, rounds, achieved_error; // [theta_i, phi_i]
+    std::vector<std::string> stop;                         // per incidence, theta_i major
+    std::vector<ComparisonArrays> comparisons;             // per model of the case
+    std::string surface; // where the surface came from (cache path, input)
+
+  private:
+    void allocate(const TraceResult& r, size_t models);
+
+    std::vector<double> theta_i_deg_, phi_i_deg_, projected_solid_angle_;
+    int orders_ = 0;
+    size_t done_ = 0;
 };
 
 } // namespace gonio

@@ -1,8 +1,8 @@
 #include "gonio/material/interfaced_lambertian.h"
-#include "gonio/material/material_kind.h"
 
 #include "core/quadrature.h"
 #include "gonio/material/fresnel.h"
+#include "gonio/material/material_kind.h"
 
 #include <algorithm>
 #include <cmath>
@@ -109,8 +109,10 @@ const Key kAlbedo = Key::numbers("albedo", {0, 1}, "substrate albedo K_d (one or
 } // namespace
 const MaterialKind& interfaced_lambertian_kind() {
     static const MaterialKind k{
-        "interfaced_lambertian", "a Fresnel interface over a Lambertian substrate [M18 section 3.1]",
-        {kAlbedo, kEta}, [](TableReader& r, TableReader& spectrum) {
+        "interfaced_lambertian",
+        "a Fresnel interface over a Lambertian substrate [M18 section 3.1]",
+        {kAlbedo, kEta},
+        [](TableReader& r, TableReader& spectrum) {
             FacetSpec s;
             s.type = "interfaced_lambertian";
             s.diffuse = true;

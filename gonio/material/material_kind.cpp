@@ -36,11 +36,13 @@ FacetSpec specular(std::string type, FresnelTerm fresnel) {
     return s;
 }
 
-const Key kIor = Key::string("ior", {}, "conductor: a table in data/ior/ (\"Au\", \"Ag\", \"Cu\", "
-                                        "\"Al\") or a CSV path")
+const Key kIor = Key::string("ior", {},
+                             "conductor: a table in data/ior/ (\"Au\", \"Ag\", \"Cu\", "
+                             "\"Al\") or a CSV path")
                      .note_default("—");
-const Key kN = Key::numbers("n", {1e-3, 100}, "conductor: real part of the index (with k, "
-                                              "instead of ior; one or per wavelength)")
+const Key kN = Key::numbers("n", {1e-3, 100},
+                            "conductor: real part of the index (with k, "
+                            "instead of ior; one or per wavelength)")
                    .note_default("—");
 const Key kK = Key::numbers("k", {0, 100}, "conductor: imaginary part (one or per wavelength)")
                    .note_default("—");
@@ -49,8 +51,9 @@ const Key kEta = Key::numbers("eta", {1e-3, 100},
                      .cited("M18 Eq. 8");
 const Key kF0 =
     Key::numbers("f0", {0, 1}, "Schlick: normal-incidence reflectance (one or per wavelength)");
-const Key kAlbedo = Key::numbers("albedo", {0, 1}, "Lambertian facets: albedo (one or per "
-                                                   "wavelength)");
+const Key kAlbedo = Key::numbers("albedo", {0, 1},
+                                 "Lambertian facets: albedo (one or per "
+                                 "wavelength)");
 } // namespace
 
 std::string list_text(const std::vector<double>& v) {
@@ -77,16 +80,18 @@ std::vector<double> read_per_channel(TableReader& r, const Key& key, TableReader
 }
 
 const MaterialKind& mirror_kind() {
-    static const MaterialKind k{"mirror", "a perfect mirror (F = 1)", {},
-                                [](TableReader&, TableReader&) {
-                                    return specular("mirror", FresnelTerm::mirror());
-                                }};
+    static const MaterialKind k{
+        "mirror", "a perfect mirror (F = 1)", {}, [](TableReader&, TableReader&) {
+            return specular("mirror", FresnelTerm::mirror());
+        }};
     return k;
 }
 
 const MaterialKind& conductor_kind() {
     static const MaterialKind k{
-        "conductor", "a conductor's exact Fresnel reflectance (complex index)", {kIor, kN, kK},
+        "conductor",
+        "a conductor's exact Fresnel reflectance (complex index)",
+        {kIor, kN, kK},
         [](TableReader& r, TableReader& spectrum) {
             std::vector<double> wavelengths = read_wavelengths(spectrum);
             std::vector<std::complex<double>> eta;
@@ -128,22 +133,26 @@ const MaterialKind& conductor_kind() {
 }
 
 const MaterialKind& schlick_kind() {
-    static const MaterialKind k{"schlick", "Schlick's approximation of the reflectance", {kF0},
-                                [](TableReader& r, TableReader& spectrum) {
-                                    std::vector<double> wavelengths;
-                                    FacetSpec s = specular(
-                                        "schlick", FresnelTerm::schlick(read_per_channel(
-                                                       r, kF0, spectrum, wavelengths)));
-                                    s.wavelengths_nm = wavelengths;
-                                    return s;
-                                }};
+    static const MaterialKind k{
+        "schlick",
+        "Schlick's approximation of the reflectance",
+        {kF0},
+        [](TableReader& r, TableReader& spectrum) {
+            std::vector<double> wavelengths;
+            FacetSpec s = specular(
+                "schlick", FresnelTerm::schlick(read_per_channel(r, kF0, spectrum, wavelengths)));
+            s.wavelengths_nm = wavelengths;
+            return s;
+        }};
     return k;
 }
 
 const MaterialKind& dielectric_kind() {
     static const MaterialKind k{
-        "dielectric", "a smooth dielectric interface, reflection and refraction [M18 Eq. 8]",
-        {kEta}, [](TableReader& r, TableReader& spectrum) {
+        "dielectric",
+        "a smooth dielectric interface, reflection and refraction [M18 Eq. 8]",
+        {kEta},
+        [](TableReader& r, TableReader& spectrum) {
             std::vector<double> wavelengths;
             const FresnelTerm fresnel =
                 FresnelTerm::dielectric(read_per_channel(r, kEta, spectrum, wavelengths));
@@ -181,8 +190,8 @@ const MaterialKind& lambertian_kind() {
 
 const std::vector<const MaterialKind*>& material_kinds() {
     static const std::vector<const MaterialKind*> kinds = {
-        &mirror_kind(),     &conductor_kind(),  &dielectric_kind(),
-        &schlick_kind(),    &lambertian_kind(), &interfaced_lambertian_kind()};
+        &mirror_kind(),  &conductor_kind(),  &dielectric_kind(),
+        &schlick_kind(), &lambertian_kind(), &interfaced_lambertian_kind()};
     return kinds;
 }
 

@@ -1,7 +1,7 @@
 #include "gonio/model/ashikhmin_model.h"
-#include "gonio/model/model_kind.h"
 
 #include "core/hemisphere_integral.h"
+#include "gonio/model/model_kind.h"
 
 #include <algorithm>
 #include <cmath>
@@ -189,7 +189,8 @@ const Key kDistribution = Key::string("distribution", {"ndf", "satin", "velvet"}
                                       "the normals' density: the case's NDF, satin [A00 section "
                                       "6.3] or velvet [A00 Eq. 35]")
                               .fallback("ndf");
-const Key kSigma = Key::number("sigma", {0.01, 10}, "velvet's width").fallback(0.5).cited("A00 Eq. 35");
+const Key kSigma =
+    Key::number("sigma", {0.01, 10}, "velvet's width").fallback(0.5).cited("A00 Eq. 35");
 const Key kCorrelation = Key::number("correlation_width", {0, 90},
                                      "0: uncorrelated shadowing [A00 Eq. 13]; A00 uses 15 with "
                                      "Eq. 14")
@@ -218,7 +219,9 @@ std::vector<KeyGroup> ashikhmin_key_groups() {
 // Held against L1 without a diffuse term, against every order with one; specular facets only.
 const ModelKind& ashikhmin_model_kind() {
     static const ModelKind k{
-        "ashikhmin", "Ashikhmin-Premoze-Shirley generated BRDF [A00 Eq. 11, 14, 25-30]", {kTable},
+        "ashikhmin",
+        "Ashikhmin-Premoze-Shirley generated BRDF [A00 Eq. 11, 14, 25-30]",
+        {kTable},
         [](TableReader& r, const ModelContext& c) {
             if (c.facets.diffuse)
                 r.fail("models", "\"ashikhmin\" is a specular model; for " + c.facets.type +

@@ -1,8 +1,8 @@
 #pragma once
-// Model L1 on the sensor cells, as cell averages (DESIGN section 4): the energy a model sends into
-// cell c is E_c = integral over the cell of f(i, o) cos(theta_o) dw_o, and the cell's BRDF is
-// E_c / Omega_c^perp with Omega_c^perp the cell's projected solid angle. Comparing cell averages
-// with cell-centre values would be wrong for lobes narrower than a cell.
+// Model L1 on the sensor cells, as cell averages (README, "The virtual gonioreflectometer"): the
+// energy a model sends into cell c is E_c = integral over the cell of f(i, o) cos(theta_o) dw_o,
+// and the cell's BRDF is E_c / Omega_c^perp with Omega_c^perp the cell's projected solid angle.
+// Comparing cell averages with cell-centre values would be wrong for lobes narrower than a cell.
 //
 // Each cell is a rectangle in (cos theta, phi), where dw = d(cos theta) dphi. It is integrated by
 // tensor Gauss-Legendre rules, split in two along its longer side while the split changes the

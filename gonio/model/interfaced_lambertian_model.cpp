@@ -1,7 +1,7 @@
 #include "gonio/model/interfaced_lambertian_model.h"
-#include "gonio/model/model_kind.h"
 
 #include "core/quadrature.h"
+#include "gonio/model/model_kind.h"
 
 #include <algorithm>
 #include <cmath>
@@ -95,15 +95,18 @@ void InterfacedLambertianModel::eval_cosine(const Vec3& i, const Vec3& o, double
 
 namespace gonio {
 namespace {
-const Key kBodyPoints = Key::integer("body_points", {4, 256},
-                                     "il: Gauss-Legendre nodes per axis of the body integral over m")
-                            .fallback(32.0)
-                            .cited("M18 Eq. 13");
+const Key kBodyPoints =
+    Key::integer("body_points", {4, 256},
+                 "il: Gauss-Legendre nodes per axis of the body integral over m")
+        .fallback(32.0)
+        .cited("M18 Eq. 13");
 }
 const ModelKind& il_model_kind() {
     static const ModelKind k{
-        "il", "interfaced Lambertian microfacets, single scattering f_s + f_b [M18 Eq. 12-13]",
-        {kBodyPoints}, [](TableReader& r, const ModelContext& c) {
+        "il",
+        "interfaced Lambertian microfacets, single scattering f_s + f_b [M18 Eq. 12-13]",
+        {kBodyPoints},
+        [](TableReader& r, const ModelContext& c) {
             if (!c.facets.diffuse)
                 r.fail("models", "\"il\" needs lambertian or interfaced_lambertian facets, not " +
                                      c.facets.type);

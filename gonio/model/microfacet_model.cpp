@@ -1,4 +1,5 @@
 #include "gonio/model/microfacet_model.h"
+
 #include "gonio/model/model_kind.h"
 
 namespace gonio {
@@ -22,7 +23,9 @@ namespace gonio {
 // Held against simulated L1. A specular model: refused for diffuse facets.
 const ModelKind& l1_model_kind() {
     static const ModelKind k{
-        "l1", "Model L1: the specular microfacet BRDF with Smith masking [R19 Eq. 2]", {},
+        "l1",
+        "Model L1: the specular microfacet BRDF with Smith masking [R19 Eq. 2]",
+        {},
         [](TableReader& r, const ModelContext& c) {
             if (c.facets.diffuse)
                 r.fail("models", "\"l1\" is a specular model; for " + c.facets.type +

@@ -9,9 +9,9 @@ const Key kMasking =
                 "G2 of Model L1 and of the IL model: Smith [R19 Eq. 9, 3] or Torrance-Sparrow "
                 "[M18 Eq. 15]")
         .fallback(kMaskingNames[0]);
-const Key kQuadrature = Key::integer("quadrature", {1, 64},
-                                     "Gauss-Legendre points per axis inside each cell")
-                            .fallback(4.0);
+const Key kQuadrature =
+    Key::integer("quadrature", {1, 64}, "Gauss-Legendre points per axis inside each cell")
+        .fallback(4.0);
 const Key kTolerance =
     Key::number("tolerance", {1e-12, 0.1}, "relative tolerance of each cell's integral")
         .fallback(1e-6);
@@ -30,13 +30,14 @@ const Key& models_key() {
 }
 } // namespace
 
-const char* masking_name(MaskingForm form) { return kMaskingNames[int(form)]; }
+const char* masking_name(MaskingForm form) {
+    return kMaskingNames[int(form)];
+}
 
 const std::vector<const ModelKind*>& model_kinds() {
-    static const std::vector<const ModelKind*> kinds = {&l1_model_kind(), &il_model_kind(),
-                                                        &vcavity_model_kind(),
-                                                        &ashikhmin_model_kind(),
-                                                        &pbrdf_model_kind()};
+    static const std::vector<const ModelKind*> kinds = {
+        &l1_model_kind(), &il_model_kind(), &vcavity_model_kind(), &ashikhmin_model_kind(),
+        &pbrdf_model_kind()};
     return kinds;
 }
 

@@ -28,9 +28,9 @@ struct ModelContext {
 };
 
 struct ModelChoice {
-    std::string name;          // the kind's name
-    std::string description;   // with its settings, for the file
-    std::string compared_with; // "l1" (single scattering) or "linf" (every order)
+    std::string name;           // the kind's name
+    std::string description;    // with its settings, for the file
+    std::string compared_with;  // "l1" (single scattering) or "linf" (every order)
     bool needs_surface = false; // fitted to the traced surface (the P-BRDF)
     // An analytic model, integrated over the cells; empty for a Monte Carlo estimator.
     std::function<std::unique_ptr<BrdfModel>(const HeightField* surface)> build;

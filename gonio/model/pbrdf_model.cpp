@@ -1,4 +1,5 @@
 #include "gonio/model/pbrdf_model.h"
+
 #include "gonio/model/model_kind.h"
 
 #include <algorithm>
@@ -161,7 +162,9 @@ const Key kSigmaEps = Key::number("pbrdf_sigma_eps", {1e-4, 1},
 // Fitted to the traced surface's slopes, so it needs the surface; specular facets only.
 const ModelKind& pbrdf_model_kind() {
     static const ModelKind k{
-        "pbrdf", "Chermain et al.'s P-BRDF fitted to the surface's slopes [C19 Eq. 7]", {kSigmaEps},
+        "pbrdf",
+        "Chermain et al.'s P-BRDF fitted to the surface's slopes [C19 Eq. 7]",
+        {kSigmaEps},
         [](TableReader& r, const ModelContext& c) {
             if (c.facets.diffuse)
                 r.fail("models", "\"pbrdf\" is a specular model; for " + c.facets.type +

@@ -1,6 +1,6 @@
 #include "gonio/model/vcavity_estimator.h"
-#include "gonio/model/model_kind.h"
 
+#include "gonio/model/model_kind.h"
 #include "gonio/trace/batched_run.h"
 
 #include <algorithm>
@@ -96,13 +96,15 @@ TraceResult vcavity_estimate(const Ndf& ndf, const Material& material, const Bec
 
 namespace gonio {
 namespace {
-const Key kRays =
-    Key::integer("vcavity_rays", {1, 1e12}, "vcavity: paths per incidence").note_default("`trace.rays`");
+const Key kRays = Key::integer("vcavity_rays", {1, 1e12}, "vcavity: paths per incidence")
+                      .note_default("`trace.rays`");
 }
 // A Monte Carlo estimator of every order, held against simulated L-infinity; opaque facets only.
 const ModelKind& vcavity_model_kind() {
     static const ModelKind k{
-        "vcavity", "V-cavity multiple scattering, every order [M18 section 3.3]", {kRays},
+        "vcavity",
+        "V-cavity multiple scattering, every order [M18 section 3.3]",
+        {kRays},
         [](TableReader& r, const ModelContext& c) {
             if (c.facets.transmits)
                 r.fail("models", "\"vcavity\" follows paths inside opaque V-grooves; " +

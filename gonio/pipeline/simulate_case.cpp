@@ -31,7 +31,7 @@ HeightField make_surface(const CaseConfig& c, const CaseRunSettings& s, const Ca
 void add_model_phases(CaseResult& result) {
     for (const ModelResult& m : result.models) {
         double seconds = 0;
-        for (double s : m.seconds) seconds += s;
+        for (double s : m.seconds.data) seconds += s;
         result.phases.add("model_" + m.name, seconds);
     }
 }
@@ -58,7 +58,7 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
     t = result.phases.add_since("models_setup", t);
 
     SimulationResult& sim = result.simulation;
-    sim.orders = c.trace.orders + 1;
+    sim = SimulationResult(c.theta_i_deg, c.phi_i_deg, *result.sensor);
     sim.surface = result.surface_origin.loaded ? c.surface.input : result.surface_origin.cache_path;
     double trace_seconds = 0, incidence_seconds = 0;
     for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti)
@@ -76,19 +76,20 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
             const auto albedos = models.evaluate(wi, *result.sensor, s.seed, st.stream);
             std::vector<Comparison> comparisons;
             for (size_t m = 0; m < models.results().size(); ++m)
-                comparisons.push_back(compare_model(
-                    r, models.results()[m].compared_with == "linf", models.last(m)));
+                comparisons.push_back(
+                    compare_model(r, models.results()[m].compared_with == "linf", models.last(m)));
             sim.append(r, comparisons);
             incidence_seconds += std::chrono::duration<double>(Clock::now() - start).count();
             if (o.finished)
-                o.finished({ti, pi, c.theta_i_deg[ti], c.phi_i_deg[pi], &r, &comparisons, &albedos});
+                o.finished(
+                    {ti, pi, c.theta_i_deg[ti], c.phi_i_deg[pi], &r, &sim, &comparisons, &albedos});
         }
     result.models = models.results();
     result.phases.add("trace", trace_seconds);
     add_model_phases(result);
     double model_seconds = 0;
     for (const ModelResult& m : result.models)
-        for (double x : m.seconds) model_seconds += x;
+        for (double x : m.seconds.data) model_seconds += x;
     result.phases.add("compare", incidence_seconds - trace_seconds - model_seconds);
     return result;
 }
@@ -112,7 +113,8 @@ CaseResult evaluate_case_models(const CaseConfig& c, const CaseRunSettings& s,
             const auto albedos =
                 models.evaluate(wi, *result.sensor, s.seed, incidence_stream(s.case_index, ti, pi));
             if (o.finished)
-                o.finished({ti, pi, c.theta_i_deg[ti], c.phi_i_deg[pi], nullptr, nullptr, &albedos});
+                o.finished({ti, pi, c.theta_i_deg[ti], c.phi_i_deg[pi], nullptr, nullptr, nullptr,
+                            &albedos});
         }
     result.models = models.results();
     add_model_phases(result);

@@ -25,8 +25,9 @@ namespace gonio {
 struct IncidenceReport {
     size_t theta_index = 0, phi_index = 0;
     double theta_deg = 0, phi_deg = 0;
-    const TraceResult* trace = nullptr; // null when only the models ran
-    const std::vector<Comparison>* comparisons = nullptr;     // per model, with a trace
+    const TraceResult* trace = nullptr;           // null when only the models ran
+    const SimulationResult* simulation = nullptr; // the case so far, this incidence included
+    const std::vector<Comparison>* comparisons = nullptr;            // per model, with a trace
     const std::vector<std::vector<double>>* model_albedos = nullptr; // [model][channel]
 };
 

@@ -17,24 +17,29 @@ const Key kTargetError = Key::number("target_error", {0, 1, true, false},
                                      "standard error is at most this")
                              .note_default("—");
 const Key kTarget =
-    Key::string("target", {kQuantityNames, kQuantityNames + 5},
-                "the target quantity (the worst channel; `*_cells`: the worst cell whose BRDF is at "
-                "least `trace.target_cell_fraction` of the brightest)")
+    Key::string(
+        "target", {kQuantityNames, kQuantityNames + 5},
+        "the target quantity (the worst channel; `*_cells`: the worst cell whose BRDF is at "
+        "least `trace.target_cell_fraction` of the brightest)")
         .fallback("l1_albedo");
-const Key kCellFraction =
-    Key::number("target_cell_fraction", {0, 1, true, false}, "`*_cells` targets: the cells that count")
-        .fallback(0.1);
-const Key kMaxRays = Key::integer("max_rays", {1, 1e13},
-                                  "the target's ray budget: the run stops when the next round would "
-                                  "exceed it, and says so")
-                         .fallback(1e10)
-                         .noting("≥ `trace.rays`");
-const Key kMaxSeconds = Key::number("max_seconds", {0, 1e7, true, false},
-                                    "the target's time budget (the run then depends on the machine)")
-                            .fallback(3600.0);
+const Key kCellFraction = Key::number("target_cell_fraction", {0, 1, true, false},
+                                      "`*_cells` targets: the cells that count")
+                              .fallback(0.1);
+const Key kMaxRays =
+    Key::integer("max_rays", {1, 1e13},
+                 "the target's ray budget: the run stops when the next round would "
+                 "exceed it, and says so")
+        .fallback(1e10)
+        .noting("≥ `trace.rays`");
+const Key kMaxSeconds =
+    Key::number("max_seconds", {0, 1e7, true, false},
+                "the target's time budget (the run then depends on the machine)")
+        .fallback(3600.0);
 } // namespace
 
-const char* name_of(TargetQuantity q) { return kQuantityNames[int(q)]; }
+const char* name_of(TargetQuantity q) {
+    return kQuantityNames[int(q)];
+}
 
 std::vector<Key> accuracy_target_keys() {
     return {kTargetError, kTarget, kCellFraction, kMaxRays, kMaxSeconds};
@@ -55,8 +60,8 @@ AccuracyTarget read_accuracy_target(TableReader& r, long long rays) {
     }
     t.relative_error = r.number(kTargetError);
     if (t.max_rays < rays)
-        r.fail("max_rays", "must be at least trace.rays (" + std::to_string(rays) +
-                               "), the rays of one round");
+        r.fail("max_rays",
+               "must be at least trace.rays (" + std::to_string(rays) + "), the rays of one round");
     return t;
 }
 

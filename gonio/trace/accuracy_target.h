@@ -19,8 +19,8 @@ const char* name_of(TargetQuantity q); // "l1_albedo", ...
 
 struct AccuracyTarget {
     TargetQuantity quantity = TargetQuantity::l1_albedo;
-    double relative_error = 0;          // 0: no target (the ray count is used as given)
-    double cell_fraction = 0.1;         // cells quantities: the cells that count
+    double relative_error = 0;  // 0: no target (the ray count is used as given)
+    double cell_fraction = 0.1; // cells quantities: the cells that count
     long long max_rays = 10'000'000'000LL;
     double max_seconds = 3600;
     bool active() const { return relative_error > 0; }

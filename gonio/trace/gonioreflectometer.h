@@ -1,12 +1,13 @@
 #pragma once
-// The virtual gonioreflectometer (R19 section 5; DESIGN section 4): a collimated beam from
-// direction i falls on the periodic microsurface; every ray is followed bounce by bounce with the
-// facets' own scattering, and its exit direction is binned on the equal-area sensor, per bounce
-// order, on the upper sensor if it leaves upwards or on the lower one if it crossed a transmissive
-// surface. Each ray carries power 1/N_rays: with the patch wrapped, the beam's footprint is the
-// whole patch and no cos(theta_i) factor appears. An energy ledger accounts for every ray.
-// The beam is B independent stratified beams (batches), whose spread gives every tally its
-// standard error; a target-accuracy run adds rounds of rays to every batch until it is met.
+// The virtual gonioreflectometer (R19 section 5; README, "The virtual gonioreflectometer"): a
+// collimated beam from direction i falls on the periodic microsurface; every ray is followed bounce
+// by bounce with the facets' own scattering, and its exit direction is binned on the equal-area
+// sensor, per bounce order, on the upper sensor if it leaves upwards or on the lower one if it
+// crossed a transmissive surface. Each ray carries power 1/N_rays: with the patch wrapped, the
+// beam's footprint is the whole patch and no cos(theta_i) factor appears. An energy ledger accounts
+// for every ray. The beam is B independent stratified beams (batches), whose spread gives every
+// tally its standard error; a target-accuracy run adds rounds of rays to every batch until it is
+// met.
 #include "gonio/material/material.h"
 #include "gonio/trace/accuracy_target.h"
 #include "gonio/trace/scene.h"

@@ -13,9 +13,9 @@ const Key kBatches = Key::integer("batches", {2, 1024},
                                   "B, the independent batches whose spread gives every standard "
                                   "error")
                          .fallback(32.0);
-const Key kOrders = Key::integer("orders", {1, 1000},
-                                 "bounce orders stored separately, then one overflow order")
-                        .fallback(10.0);
+const Key kOrders =
+    Key::integer("orders", {1, 1000}, "bounce orders stored separately, then one overflow order")
+        .fallback(10.0);
 const Key kMaxBounces = Key::integer("max_bounces", {1, 1e6},
                                      "rays still bouncing are cut (ledger: capped); 1 traces L1 "
                                      "only")

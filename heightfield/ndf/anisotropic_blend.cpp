@@ -1,9 +1,9 @@
 #include "heightfield/ndf/anisotropic_blend.h"
-#include "heightfield/ndf/ndf_family.h"
 
 #include "core/catmull_rom.h"
 #include "core/quadrature.h"
 #include "core/random.h"
+#include "heightfield/ndf/ndf_family.h"
 
 #include <algorithm>
 #include <cmath>
@@ -170,7 +170,9 @@ const Key kY = Key::table("y", "the isotropic curve along φ = 90°").cited("R19
 } // namespace
 const NdfFamily& blend_family() {
     static const NdfFamily f{
-        "blend", "anisotropic blend of two isotropic curves [R19 Eq. 10]", {kX, kY},
+        "blend",
+        "anisotropic blend of two isotropic curves [R19 Eq. 10]",
+        {kX, kY},
         [](TableReader& r, int depth) -> std::unique_ptr<Ndf> {
             std::unique_ptr<Ndf> axes[2];
             for (int k = 0; k < 2; ++k) {

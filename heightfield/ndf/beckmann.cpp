@@ -1,7 +1,7 @@
 #include "heightfield/ndf/beckmann.h"
-#include "heightfield/ndf/ndf_family.h"
 
 #include "core/special_functions.h"
+#include "heightfield/ndf/ndf_family.h"
 
 #include <cmath>
 #include <limits>
@@ -67,7 +67,8 @@ void Beckmann::sample_visible_slope(double c, double u1, double u2, double& x, d
 namespace gonio {
 const NdfFamily& beckmann_family() {
     static const NdfFamily f{"beckmann", "Beckmann: Gaussian slopes [R19 section 2.1]",
-                             roughness_keys(), [](TableReader& r, int) -> std::unique_ptr<Ndf> {
+                             roughness_keys(),
+                             [](TableReader& r, int) -> std::unique_ptr<Ndf> {
                                  const Roughness a = read_roughness(r);
                                  return std::make_unique<Beckmann>(a.x, a.y);
                              },

@@ -1,7 +1,7 @@
 #include "heightfield/ndf/gaussian_angles.h"
-#include "heightfield/ndf/ndf_family.h"
 
 #include "core/quadrature.h"
+#include "heightfield/ndf/ndf_family.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -61,7 +61,9 @@ const Key kThetaMax =
         .fallback(89.9);
 } // namespace
 const NdfFamily& gaussian_family() {
-    static const NdfFamily f{"gaussian", "Gaussian of angles [M18 Eq. 14]", {kSigma, kThetaMax},
+    static const NdfFamily f{"gaussian",
+                             "Gaussian of angles [M18 Eq. 14]",
+                             {kSigma, kThetaMax},
                              [](TableReader& r, int) -> std::unique_ptr<Ndf> {
                                  const double sigma = radians(r.number(kSigma));
                                  return std::make_unique<GaussianAngles>(

@@ -1,4 +1,5 @@
 #include "heightfield/ndf/generalized_t.h"
+
 #include "heightfield/ndf/ndf_family.h"
 
 #include <cmath>

@@ -1,4 +1,5 @@
 #include "heightfield/ndf/ggx.h"
+
 #include "heightfield/ndf/ndf_family.h"
 
 #include <algorithm>

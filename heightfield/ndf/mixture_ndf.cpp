@@ -1,4 +1,5 @@
 #include "heightfield/ndf/mixture_ndf.h"
+
 #include "core/number_text.h"
 #include "heightfield/ndf/ndf_family.h"
 
@@ -99,25 +100,26 @@ double MixtureNdf::widest_feature() const {
 namespace gonio {
 namespace {
 const Key kComponents = Key::tables("components", "the distributions mixed, Σ w_k D_k");
-const Key kWeights = Key::numbers("weights", {0, 1e300, true, false},
-                                  "one per component, normalised")
-                         .note_default("equal");
+const Key kWeights =
+    Key::numbers("weights", {0, 1e300, true, false}, "one per component, normalised")
+        .note_default("equal");
 } // namespace
 const NdfFamily& mixture_family() {
-    static const NdfFamily f{
-        "mixture", "weighted mixture of distributions", {kComponents, kWeights},
-        [](TableReader& r, int depth) -> std::unique_ptr<Ndf> {
-            std::vector<std::unique_ptr<Ndf>> parts;
-            for (TableReader& part : r.table_list(kComponents))
-                parts.push_back(read_ndf(part, depth + 1));
-            std::vector<double> weights(parts.size(), 1.0);
-            if (r.has(kWeights.name)) weights = r.number_list(kWeights);
-            if (weights.size() != parts.size())
-                r.fail("weights", "has " + std::to_string(weights.size()) +
-                                      " values; give one per component (" +
-                                      std::to_string(parts.size()) + ")");
-            return std::make_unique<MixtureNdf>(std::move(parts), weights);
-        }};
+    static const NdfFamily f{"mixture",
+                             "weighted mixture of distributions",
+                             {kComponents, kWeights},
+                             [](TableReader& r, int depth) -> std::unique_ptr<Ndf> {
+                                 std::vector<std::unique_ptr<Ndf>> parts;
+                                 for (TableReader& part : r.table_list(kComponents))
+                                     parts.push_back(read_ndf(part, depth + 1));
+                                 std::vector<double> weights(parts.size(), 1.0);
+                                 if (r.has(kWeights.name)) weights = r.number_list(kWeights);
+                                 if (weights.size() != parts.size())
+                                     r.fail("weights", "has " + std::to_string(weights.size()) +
+                                                           " values; give one per component (" +
+                                                           std::to_string(parts.size()) + ")");
+                                 return std::make_unique<MixtureNdf>(std::move(parts), weights);
+                             }};
     return f;
 }
 } // namespace gonio

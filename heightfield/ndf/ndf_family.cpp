@@ -1,18 +1,25 @@
 #include "heightfield/ndf/ndf_family.h"
 
 #include "core/config_error.h"
-#include <toml++/toml.h>
 
 #include <stdexcept>
+#include <toml++/toml.h>
 
 namespace gonio {
 
 const std::vector<const NdfFamily*>& ndf_families() {
-    static const std::vector<const NdfFamily*> families = {
-        &beckmann_family(),      &ggx_family(),      &student_t_family(),
-        &generalized_normal_family(), &generalized_t_family(), &gaussian_family(),
-        &piecewise_linear_family(),   &sinc_family(),  &blend_family(),
-        &mixture_family(),       &tabulated_family(), &height_map_family()};
+    static const std::vector<const NdfFamily*> families = {&beckmann_family(),
+                                                           &ggx_family(),
+                                                           &student_t_family(),
+                                                           &generalized_normal_family(),
+                                                           &generalized_t_family(),
+                                                           &gaussian_family(),
+                                                           &piecewise_linear_family(),
+                                                           &sinc_family(),
+                                                           &blend_family(),
+                                                           &mixture_family(),
+                                                           &tabulated_family(),
+                                                           &height_map_family()};
     return families;
 }
 
@@ -27,7 +34,8 @@ const Key& ndf_type_key() {
 
 std::vector<KeyGroup> ndf_key_groups() {
     std::vector<KeyGroup> groups{{"ndf", "", "", {ndf_type_key()}}};
-    for (const NdfFamily* f : ndf_families()) groups.push_back({"ndf", f->name, f->summary, f->keys});
+    for (const NdfFamily* f : ndf_families())
+        groups.push_back({"ndf", f->name, f->summary, f->keys});
     return groups;
 }
 

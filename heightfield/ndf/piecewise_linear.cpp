@@ -1,4 +1,5 @@
 #include "heightfield/ndf/piecewise_linear.h"
+
 #include "core/number_text.h"
 #include "heightfield/ndf/ndf_family.h"
 
@@ -115,21 +116,22 @@ ControlPoints PiecewiseLinearNdf::sampled_from(const Ndf& source, int intervals)
 
 namespace gonio {
 namespace {
-const Key kTheta = Key::numbers("theta", {0, 90}, "control points' angles, from 0 to 90, increasing")
-                       .in_unit("degrees")
-                       .cited("R19 Eq. 11");
+const Key kTheta =
+    Key::numbers("theta", {0, 90}, "control points' angles, from 0 to 90, increasing")
+        .in_unit("degrees")
+        .cited("R19 Eq. 11");
 const Key kValue = Key::numbers("value", {0, 1e300},
                                 "D_iso at the control points (any scale: normalised by Eq. 12)")
                        .cited("R19 Eq. 11-12");
 const Key kSource = Key::table("source", "instead of theta/value: a distribution to sample along "
                                          "φ = 0");
-const Key kPoints = Key::integer("points", {3, 4097},
-                                 "with `source`: control points uniform in θ")
-                        .fallback(65.0);
+const Key kPoints =
+    Key::integer("points", {3, 4097}, "with `source`: control points uniform in θ").fallback(65.0);
 } // namespace
 const NdfFamily& piecewise_linear_family() {
     static const NdfFamily f{
-        "piecewise_linear", "piecewise-linear isotropic curve [R19 Eq. 11-12]",
+        "piecewise_linear",
+        "piecewise-linear isotropic curve [R19 Eq. 11-12]",
         {kTheta, kValue, kSource, kPoints},
         [](TableReader& r, int depth) -> std::unique_ptr<Ndf> {
             if (r.has("source")) {

@@ -1,7 +1,7 @@
 #include "heightfield/ndf/radial_ndf.h"
-#include "core/number_text.h"
 
 #include "core/catmull_rom.h"
+#include "core/number_text.h"
 #include "core/quadrature.h"
 #include "core/random.h"
 

@@ -1,4 +1,5 @@
 #include "heightfield/ndf/shape_invariant_ndf.h"
+
 #include "core/number_text.h"
 
 #include <cmath>

@@ -1,4 +1,5 @@
 #include "heightfield/ndf/sinc_ndf.h"
+
 #include "core/number_text.h"
 #include "heightfield/ndf/ndf_family.h"
 
@@ -42,11 +43,12 @@ const Key kK = Key::number("k", {0, 200, true, false}, "D ∝ sinc²(kθ) + floo
                    .in_unit("per rad")
                    .cited("R19 section 5.1");
 const Key kFloor = Key::number("floor", {0, 1}, "sinc: floor, relative to the peak").fallback(0.0);
-const Key kPoints = Key::integer("points", {9, 4097}, "sinc: control points of the curve")
-                        .fallback(129.0);
+const Key kPoints =
+    Key::integer("points", {9, 4097}, "sinc: control points of the curve").fallback(129.0);
 } // namespace
 const NdfFamily& sinc_family() {
-    static const NdfFamily f{"sinc", "sinc² multi-lobe curve [R19 section 5.1, Fig. 10]",
+    static const NdfFamily f{"sinc",
+                             "sinc² multi-lobe curve [R19 section 5.1, Fig. 10]",
                              {kK, kFloor, kPoints},
                              [](TableReader& r, int) -> std::unique_ptr<Ndf> {
                                  const double k = r.number(kK), floor = r.number(kFloor);

@@ -1,4 +1,5 @@
 #include "heightfield/ndf/student_t.h"
+
 #include "heightfield/ndf/ndf_family.h"
 
 #include <cmath>

@@ -1,9 +1,9 @@
 #include "heightfield/ndf/tabulated_ndf.h"
-#include "heightfield/ndf/ndf_family.h"
-#include "heightfield/exr_io.h"
 
 #include "core/quadrature.h"
 #include "core/random.h"
+#include "heightfield/exr_io.h"
+#include "heightfield/ndf/ndf_family.h"
 #include "heightfield/ndf/piecewise_linear.h"
 
 #include <algorithm>
@@ -332,7 +332,8 @@ const Key kPhiCount =
         .fallback(36.0);
 
 // A table or map that does not read is reported at its key, before any work.
-template <class F> auto reading(TableReader& r, const Key& key, F&& f) -> decltype(f()) {
+template <class F>
+auto reading(TableReader& r, const Key& key, F&& f) -> decltype(f()) {
     try {
         return f();
     } catch (const std::exception& e) {
@@ -342,7 +343,9 @@ template <class F> auto reading(TableReader& r, const Key& key, F&& f) -> declty
 } // namespace
 
 const NdfFamily& tabulated_family() {
-    static const NdfFamily f{"tabulated", "a measured D(θ, φ) table", {kTableFile},
+    static const NdfFamily f{"tabulated",
+                             "a measured D(θ, φ) table",
+                             {kTableFile},
                              [](TableReader& r, int) -> std::unique_ptr<Ndf> {
                                  const std::string file = r.path(kTableFile);
                                  return reading(r, kTableFile, [&] {
@@ -355,7 +358,9 @@ const NdfFamily& tabulated_family() {
 
 const NdfFamily& height_map_family() {
     static const NdfFamily f{
-        "height_map", "the facet NDF of a height map", {kMapFile, kThetaIntervals, kPhiCount},
+        "height_map",
+        "the facet NDF of a height map",
+        {kMapFile, kThetaIntervals, kPhiCount},
         [](TableReader& r, int) -> std::unique_ptr<Ndf> {
             const std::string file = r.path(kMapFile);
             const int theta_intervals = int(r.integer(kThetaIntervals));

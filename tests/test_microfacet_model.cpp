@@ -37,7 +37,7 @@ std::vector<double> energies(const Ndf& ndf, const FresnelTerm& fresnel, Masking
 }
 } // namespace
 
-TEST_CASE("Model L1 albedo matches the reference values of DESIGN section 9") {
+TEST_CASE("Model L1 albedo matches reference values from an independent quadrature") {
     const FresnelTerm mirror = FresnelTerm::mirror();
     const Vec3 normal{0, 0, 1};
     // Height-correlated Smith, perfect mirror, independent quadrature: 0.9430 and 0.4616.

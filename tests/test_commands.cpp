@@ -10,6 +10,7 @@
 #include <fstream>
 #include <hdf5.h>
 #include <hdf5_hl.h>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -56,15 +57,30 @@ TEST_CASE("gonio model writes a complete result file that gonio info reads") {
     CHECK(s.cases[1].channels == 3);
     CHECK(s.cases[1].wavelength_nm == std::vector<double>{650, 550, 450});
     const std::vector<double>& albedo = s.cases[0].albedos.at("model_l1_albedo");
-    REQUIRE(albedo.size() == 4);                // 2 theta_i x 2 phi_i x 1 channel
-    CHECK(std::abs(albedo[0] - 0.9430) < 1e-3); // Beckmann 0.5, normal incidence (DESIGN section 9)
+    REQUIRE(albedo.size() == 4); // 2 theta_i x 2 phi_i x 1 channel
+    CHECK(std::abs(albedo[0] - 0.9430) <
+          1e-3); // Beckmann 0.5, normal incidence (0.9430 by an independent quadrature)
     CHECK(albedo[0] ==
           doctest::Approx(albedo[1]).epsilon(1e-12)); // isotropic: phi_i does not matter
 
     const Run info = run_gonio(d, "info out.h5 --json");
     CHECK(info.code == 0);
-    CHECK(info.out.find("\"model_l1_albedo\": [0.94") != std::string::npos);
-    CHECK(info.out.find("\"theta_i\": 60, \"phi_i\": 90") != std::string::npos);
+    const nlohmann::json j = nlohmann::json::parse(info.out);
+    CHECK(j.at("file_format") == "gonio-result 2");
+    CHECK(j.at("seed") == 3);
+    REQUIRE(j.at("cases").size() == 2);
+    const nlohmann::json& mirror = j.at("cases")[0];
+    CHECK(mirror.at("name") == "mirror");
+    CHECK(mirror.at("models") == nlohmann::json::array({"l1"}));
+    CHECK(j.at("cases")[1].at("wavelength_nm") == nlohmann::json::array({650, 550, 450}));
+    REQUIRE(mirror.at("incidences").size() == 4);
+    const nlohmann::json& last = mirror.at("incidences")[3];
+    CHECK(last.at("theta_i") == 60);
+    CHECK(last.at("phi_i") == 90);
+    // Shortest round-trip: the number read back is the double in the file.
+    CHECK(mirror.at("incidences")[0].at("model_l1_albedo")[0].get<double>() == albedo[0]);
+    CHECK(mirror.at("timings").contains("model_l1"));
+    CHECK(j.at("timings").at("wall").get<double>() >= 0);
     const Run text = run_gonio(d, "info out.h5");
     CHECK(text.code == 0);
     CHECK(text.out.find("case gold") != std::string::npos);
@@ -80,18 +96,29 @@ TEST_CASE("result file: cell coordinates are attached dimension scales with unit
                     "open");
     h5::Handle group(H5Gopen2(file, "gold", H5P_DEFAULT), H5Gclose, "group");
     h5::Handle brdf(H5Dopen2(group, "model_l1", H5P_DEFAULT), H5Dclose, "model_l1");
-    CHECK(H5DSget_num_scales(brdf, 0) == 1);
-    CHECK(H5DSget_num_scales(brdf, 2) >= 9); // cell, theta/phi centre, bounds, solid angles
-    CHECK(H5DSget_num_scales(brdf, 3) == 2); // channel and wavelength
+    // One scale per axis; the cell geometry and the wavelengths are coordinates named in the
+    // `coordinates` attribute, each a variable along the cell (channel) scale.
+    for (unsigned k = 0; k < 4; ++k) CHECK(H5DSget_num_scales(brdf, k) == 1);
+    h5::Handle cell(H5Dopen2(group, "cell", H5P_DEFAULT), H5Dclose, "cell");
+    h5::Handle channel(H5Dopen2(group, "channel", H5P_DEFAULT), H5Dclose, "channel");
+    CHECK(H5DSis_attached(brdf, cell, 2) > 0);
+    CHECK(H5DSis_attached(brdf, channel, 3) > 0);
+    const std::string coordinates = h5::read_string_attribute(brdf, "coordinates");
     for (const char* name : {"theta_center", "phi_center", "theta_min", "theta_max", "phi_min",
-                             "phi_max", "solid_angle", "projected_solid_angle"}) {
+                             "phi_max", "solid_angle", "projected_solid_angle", "wavelength"}) {
         CAPTURE(name);
-        h5::Handle scale(H5Dopen2(group, name, H5P_DEFAULT), H5Dclose, name);
-        CHECK(H5DSis_scale(scale) > 0);
-        CHECK(H5DSis_attached(brdf, scale, 2) > 0);
-        const std::string units = h5::read_string_attribute(scale, "units");
-        CHECK((units == "degree" || units == "sr"));
+        CHECK(coordinates.find(name) != std::string::npos);
+        h5::Handle coord(H5Dopen2(group, name, H5P_DEFAULT), H5Dclose, name);
+        CHECK(H5DSis_scale(coord) <= 0);
+        CHECK(H5DSis_attached(coord, std::string(name) == "wavelength" ? channel : cell, 0) > 0);
+        const std::string units = h5::read_string_attribute(coord, "units");
+        CHECK((units == "degree" || units == "sr" || units == "nm"));
     }
+    const std::vector<std::string> models = h5::read_string_list_attribute(group, "models");
+    CHECK(models == std::vector<std::string>{"l1"});
+    CHECK(h5::attribute_is_array(group, "models"));
+    CHECK(h5::read_string_list_attribute(file, "cases") ==
+          std::vector<std::string>{"mirror", "gold"});
     CHECK(h5::read_string_attribute(brdf, "units") == "1/sr");
     // The BRDF is the cell energy over the projected solid angle.
     std::vector<hsize_t> dims;
@@ -104,7 +131,7 @@ TEST_CASE("result file: cell coordinates are attached dimension scales with unit
     fs::remove_all(d);
 }
 
-TEST_CASE("a bad config: one line naming file, line and key; exit code 2; no output file") {
+TEST_CASE("a bad config: one line naming file, line and key, exit code 2, no output file") {
     const fs::path d = fresh_dir("bad");
     write(d / "bad.toml", "[ndf]\ntype = \"beckmann\"\nalhpa = 0.5\n[beam]\ntheta_i = 0\n");
     const Run r = run_gonio(d, "model bad.toml -o out.h5");
@@ -339,7 +366,7 @@ TEST_CASE("gonio run with diffuse facets: the IL model and the V-cavity beside t
     const ResultSummary s = read_result_summary((d / "out.h5").string());
     REQUIRE(s.cases.size() == 1);
     const CaseSummary& c = s.cases[0];
-    CHECK(c.attributes.at("models") == "il,vcavity");
+    CHECK(c.models == std::vector<std::string>{"il", "vcavity"});
     CHECK(c.attributes.at("model_il_compared_with") == "l1");
     CHECK(c.attributes.at("model_vcavity_compared_with") == "linf");
     for (const char* name :
@@ -362,5 +389,43 @@ TEST_CASE("gonio run with diffuse facets: the IL model and the V-cavity beside t
     CHECK(cmp.code == 0);
     CHECK(cmp.out.find("vcavity") != std::string::npos);
     CHECK(cmp.out.find("Linf") != std::string::npos);
+    fs::remove_all(d);
+}
+
+TEST_CASE("a format-1 result file (gonio-result 1, lists as comma-joined strings) still reads") {
+    const std::string path = std::string(GONIO_SOURCE_DIR) + "/tests/data/result_format1.h5";
+    const ResultSummary s = read_result_summary(path);
+    CHECK(s.format == 1);
+    CHECK(s.attributes.at("file_format") == "gonio-result 1");
+    CHECK(s.timings.empty());
+    REQUIRE(s.cases.size() == 3);
+    const CaseSummary& gold = s.cases[2];
+    CHECK(gold.name == "gold_beckmann_aniso");
+    CHECK(gold.cells == 145);
+    CHECK(gold.channels == 3);
+    CHECK(gold.wavelength_nm == std::vector<double>{650, 550, 450});
+    CHECK(gold.models == std::vector<std::string>{"l1"});
+    CHECK(gold.stop == std::vector<std::string>{"rays", "rays"});
+    CHECK(gold.albedos.at("l1_albedo").size() == 6); // 2 theta_i x 1 phi_i x 3 channels
+    CHECK(gold.albedos.count("l1_relative_difference_stderr") == 1);
+    CHECK(gold.runs.at("rays").size() == 2);
+
+    const fs::path d = fresh_dir("format1");
+    const Run info = run_gonio(d, "info " + path + " --json");
+    CHECK(info.code == 0);
+    const nlohmann::json j = nlohmann::json::parse(info.out);
+    CHECK(j.at("file_format") == "gonio-result 1");
+    CHECK(j.at("cases")[0].at("models") == nlohmann::json::array({"l1"}));
+    CHECK(j.at("cases")[0].at("incidences")[1].at("stop") == "rays");
+    CHECK(j.at("cases")[0].at("incidences")[1].at("theta_i") == 60);
+    const Run text = run_gonio(d, "info " + path);
+    CHECK(text.code == 0);
+    CHECK(text.out.find("case gold_beckmann_aniso") != std::string::npos);
+    const Run compare = run_gonio(d, "compare " + path);
+    CHECK(compare.code == 0);
+    CHECK(compare.err.empty());
+    // A header and one row per case, incidence, channel and model: (2 + 2 + 2 x 3) x 1.
+    CHECK(std::count(compare.out.begin(), compare.out.end(), '\n') == 11);
+    CHECK(compare.out.find("gold_beckmann_aniso") != std::string::npos);
     fs::remove_all(d);
 }

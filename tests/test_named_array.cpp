@@ -1,0 +1,33 @@
+// core/named_array.h: layout, checked indexing, blocks.
+#include "core/named_array.h"
+
+#include <doctest/doctest.h>
+#include <stdexcept>
+
+using gonio::Array;
+
+TEST_CASE("named array: row-major layout, checked indices and blocks") {
+    Array a({"theta_i", "phi_i", "channel"}, {2, 3, 4}, "1", "test");
+    CHECK(a.size() == 24);
+    CHECK(a.rank() == 3);
+    CHECK(a.axis("phi_i") == 1);
+    CHECK(a.extent("channel") == 4);
+    CHECK(a.has("channel"));
+    CHECK(!a.has("cell"));
+    CHECK_THROWS_AS(a.axis("cell"), std::out_of_range);
+    a.at({1, 2, 3}) = 5;
+    CHECK(a.data[((1 * 3) + 2) * 4 + 3] == 5);
+    CHECK(a.offset({1, 2}) == 20);
+    CHECK_THROWS_AS(a.at({2, 0, 0}), std::out_of_range);
+    CHECK_THROWS_AS(a.at({0, 0}), std::out_of_range); // a block, not an element
+    a.put({0, 1}, {1, 2, 3, 4});
+    CHECK(a.block({0, 1}) == std::vector<double>{1, 2, 3, 4});
+    CHECK(a.at({0, 1, 2}) == 3);
+    CHECK_THROWS_AS(a.put({0, 1}, {1, 2}), std::length_error);
+    const Array b = a.like("1/sr", "other");
+    CHECK(b.dims == a.dims);
+    CHECK(b.shape == a.shape);
+    CHECK(b.units == "1/sr");
+    CHECK(b.at({1, 2, 3}) == 0);
+    CHECK_THROWS_AS(Array({"a"}, {1, 2}), std::logic_error);
+}
