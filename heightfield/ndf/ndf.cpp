@@ -26,6 +26,18 @@ double Ndf::G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form) co
     return 1.0 / ((1.0 + li) * (1.0 + lo));                                   // R19 Eq. 3
 }
 
+double Ndf::G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form,
+               double lambda_i) const {
+    const double im = dot(i, m), om = dot(o, m);
+    if (im <= 0 || om <= 0) return 0.0;
+    if (form == MaskingForm::v_cavity)
+        return std::min({1.0, 2.0 * i.z * m.z / im, 2.0 * o.z * m.z / om});
+    const double li = lambda_i, lo = lambda(o);
+    if (std::isinf(li) || std::isinf(lo)) return 0.0;
+    if (form == MaskingForm::height_correlated) return 1.0 / (1.0 + li + lo);
+    return 1.0 / ((1.0 + li) * (1.0 + lo));
+}
+
 double Ndf::pdf_m(const Vec3& m) const {
     return m.z > 0 ? D(m) * m.z : 0.0;
 }
