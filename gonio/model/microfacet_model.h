@@ -6,6 +6,7 @@
 #include "gonio/model/brdf_model.h"
 #include "heightfield/ndf/ndf.h"
 
+#include <cstdint>
 #include <utility>
 
 namespace gonio {
@@ -14,7 +15,7 @@ class MicrofacetModel final : public BrdfModel {
   public:
     // Keeps a reference to ndf, which must outlive the model; copies the (small) Fresnel term.
     MicrofacetModel(const Ndf& ndf, FresnelTerm fresnel, MaskingForm masking)
-        : ndf_(ndf), fresnel_(std::move(fresnel)), masking_(masking) {}
+        : ndf_(ndf), fresnel_(std::move(fresnel)), masking_(masking), id_(next_id()) {}
 
     int channels() const override { return fresnel_.channels(); }
     const Ndf& ndf() const { return ndf_; }
@@ -25,9 +26,13 @@ class MicrofacetModel final : public BrdfModel {
     double widest_feature() const override { return ndf_.widest_feature(); }
 
   private:
+    static std::uint64_t next_id();
+    double lambda_i(const Vec3& i) const; // Lambda(i), remembered per thread for the last i
+
     const Ndf& ndf_;
     FresnelTerm fresnel_;
     MaskingForm masking_;
+    std::uint64_t id_; // unique per model ever made: keys the per-thread Lambda(i) cache
 };
 
 } // namespace gonio

@@ -15,6 +15,7 @@
 #include "gonio/model/brdf_model.h"
 #include "heightfield/heightfield.h"
 
+#include <cstdint>
 #include <vector>
 
 namespace gonio {
@@ -52,6 +53,7 @@ class PBrdfModel final : public BrdfModel {
 
   private:
     double visible_area_table(const Vec3& v) const;
+    void build_slope_grid();
 
     struct Lobe {
         SlopeLobe s;
@@ -63,6 +65,12 @@ class PBrdfModel final : public BrdfModel {
     double narrow_ = 0, wide_ = 0;
     int theta_nodes_, phi_nodes_;
     std::vector<double> table_; // visible_area(v) / cos theta_v on the grid
+    // The lobes that can reach each cell of a grid over slope space (D's culling, exact).
+    double grid_x0_ = 0, grid_y0_ = 0, grid_x1_ = 0, grid_y1_ = 0, grid_sx_ = 1, grid_sy_ = 1;
+    int grid_nx_ = 1, grid_ny_ = 1;
+    bool grid_all_ = true;                  // no grid: D sums over every lobe
+    std::vector<std::uint32_t> cell_start_; // cell c's lobes: cell_lobes_[start[c], start[c+1])
+    std::vector<std::uint32_t> cell_lobes_;
 };
 
 } // namespace gonio

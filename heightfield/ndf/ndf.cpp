@@ -16,11 +16,17 @@ double Ndf::G1(const Vec3& v, const Vec3& m) const {
 }
 
 double Ndf::G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form) const {
+    if (dot(i, m) <= 0 || dot(o, m) <= 0) return 0.0; // back-facing: no Lambda needed
+    return G2(i, o, m, form, form == MaskingForm::v_cavity ? 0.0 : lambda(i));
+}
+
+double Ndf::G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form,
+               double lambda_i) const {
     const double im = dot(i, m), om = dot(o, m);
     if (im <= 0 || om <= 0) return 0.0;
     if (form == MaskingForm::v_cavity) // M18 Eq. 15: exact for V-grooves along m's azimuth
         return std::min({1.0, 2.0 * i.z * m.z / im, 2.0 * o.z * m.z / om});
-    const double li = lambda(i), lo = lambda(o);
+    const double li = lambda_i, lo = lambda(o);
     if (std::isinf(li) || std::isinf(lo)) return 0.0;
     if (form == MaskingForm::height_correlated) return 1.0 / (1.0 + li + lo); // R19 Eq. 9
     return 1.0 / ((1.0 + li) * (1.0 + lo));                                   // R19 Eq. 3

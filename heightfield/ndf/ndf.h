@@ -58,6 +58,8 @@ class Ndf {
     double G1(const Vec3& v, const Vec3& m) const;
     // Masking-shadowing G2(i, o, m) in the chosen form [R19 Eq. 3 and Eq. 9, M18 Eq. 15].
     double G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form) const;
+    // The same with lambda_i = Lambda(i) given (a caller that holds i fixed computes it once).
+    double G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form, double lambda_i) const;
     // pdf of sample_m: D(m) m.z.
     double pdf_m(const Vec3& m) const;
     // pdf of sample_visible: G1(v, m) <v.m> D(m) / v.z.

@@ -204,7 +204,7 @@ double TabulatedNdf::bilinear(double theta, double phi) const {
     const double a = ft - j;
     double fp = phi / dp_;
     fp -= np * std::floor(fp / np);
-    const int k = std::min(int(fp), np - 1), k1 = (k + 1) % np;
+    const int k = std::min(int(fp), np - 1), k1 = k + 1 == np ? 0 : k + 1;
     const double b = fp - k;
     return (1 - a) * ((1 - b) * t_.at(j, k) + b * t_.at(j, k1)) +
            a * ((1 - b) * t_.at(j + 1, k) + b * t_.at(j + 1, k1));
@@ -225,9 +225,12 @@ double TabulatedNdf::lambda(const Vec3& v) const {
     const double x = theta / (0.5 * kPi) * it_, y = phi / kTwoPi * ip_;
     const int i = std::min(int(x), it_ - 1), l = int(y) % ip_;
     const double tx = x - i, ty = y - std::floor(y);
+    // The four (periodic) columns, wrapped once rather than per row.
+    const size_t c0 = size_t((l - 1 + ip_) % ip_), c1 = size_t(l), c2 = size_t((l + 1) % ip_),
+                 c3 = size_t((l + 2) % ip_);
     auto row = [&](int r) {
-        auto at = [&](int c) { return projected_[size_t(r) * ip_ + size_t((c + ip_) % ip_)]; };
-        return cubic(at(l - 1), at(l), at(l + 1), at(l + 2), ty);
+        const double* p = &projected_[size_t(r) * ip_];
+        return cubic(p[c0], p[c1], p[c2], p[c3], ty);
     };
     double p[4];
     for (int q = 0; q < 4; ++q) {
