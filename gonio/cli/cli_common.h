@@ -1,5 +1,8 @@
 #pragma once
 // Settings every subcommand derives from its options the same way.
+#include "gonio/config/config.h"
+#include "gonio/io/result_writer.h"
+#include "gonio/pipeline/phase_times.h"
 #include "heightfield/surface_cache.h"
 
 #include <memory>
@@ -25,6 +28,24 @@ inline int worker_threads(int threads) {
 inline SurfaceCache surface_cache(bool no_cache, const std::string& cache_dir) {
     if (no_cache) return SurfaceCache(std::string());
     return SurfaceCache(cache_dir.empty() ? default_cache_directory() : cache_dir);
+}
+
+// A run's own phases: "config" is the loading of `cfg` since `start`, less its NDFs' (each case's
+// "ndf" phase).
+inline PhaseTimes run_phases(const Config& cfg, PhaseTimes::Clock::time_point start) {
+    double ndf_seconds = 0;
+    for (const CaseConfig& c : cfg.cases) ndf_seconds += c.ndf_seconds;
+    PhaseTimes run;
+    run.add("config",
+            std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count() - ndf_seconds);
+    return run;
+}
+
+// Adds the wall time since `start` to the run's phases, writes them at the root and commits.
+inline void finish_run(ResultWriter& writer, PhaseTimes run, PhaseTimes::Clock::time_point start) {
+    run.add("wall", std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count());
+    writer.write_timings("", run.phases());
+    writer.commit();
 }
 
 } // namespace gonio

@@ -19,11 +19,7 @@ int run_model_command(const ModelOptions& options) {
         if (cfg.cases[k].model.models.empty())
             throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].model.evaluate",
                               "gonio model evaluates the models; this case has none");
-    PhaseTimes run;
-    double ndf_seconds = 0;
-    for (const CaseConfig& c : cfg.cases) ndf_seconds += c.ndf_seconds;
-    run.add("config",
-            std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count() - ndf_seconds);
+    PhaseTimes run = run_phases(cfg, start);
     auto t = PhaseTimes::Clock::now();
     const std::string output = options.output.empty()
                                    ? std::filesystem::path(options.config).stem().string() + ".h5"
@@ -69,9 +65,7 @@ int run_model_command(const ModelOptions& options) {
     }
     progress.finish();
     run.add_since("writing", t);
-    run.add("wall", std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count());
-    writer.write_timings("", run.phases());
-    writer.commit();
+    finish_run(writer, run, start);
     if (!options.quiet) std::printf("wrote %s\n", output.c_str());
     return 0;
 }

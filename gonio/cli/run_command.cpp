@@ -45,11 +45,7 @@ int run_run_command(const RunOptions& o) {
     const auto start = PhaseTimes::Clock::now();
     const Config cfg = load_config(o.config, o.overrides); // throws ConfigError
     cfg.require_beam("gonio run");
-    PhaseTimes run;
-    double ndf_seconds = 0;
-    for (const CaseConfig& c : cfg.cases) ndf_seconds += c.ndf_seconds;
-    run.add("config",
-            std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count() - ndf_seconds);
+    PhaseTimes run = run_phases(cfg, start);
     auto t = PhaseTimes::Clock::now();
     const auto limit = limit_threads(o.threads);
     const std::string output =
@@ -98,9 +94,7 @@ int run_run_command(const RunOptions& o) {
         t = PhaseTimes::Clock::now();
     }
     run.add_since("writing", t);
-    run.add("wall", std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count());
-    writer.write_timings("", run.phases());
-    writer.commit();
+    finish_run(writer, run, start);
     if (!o.quiet) std::printf("wrote %s\n", output.c_str());
     return 0;
 }

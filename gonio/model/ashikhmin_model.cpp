@@ -227,12 +227,15 @@ const ModelKind& ashikhmin_model_kind() {
                 r.fail("models", "\"ashikhmin\" is a specular model; for " + c.facets.type +
                                      " facets use \"il\" (and \"vcavity\")");
             AshikhminSettings s;
-            std::string distribution = "ndf";
+            enum class Density { ndf, satin, velvet } which = Density::ndf;
             double sigma = 0.5;
             if (r.has(kTable.name)) {
                 TableReader a = r.table(kTable);
                 a.allow_only({&kSubKeys});
-                distribution = a.string(kDistribution);
+                const std::string distribution = a.string(kDistribution);
+                which = distribution == "satin"    ? Density::satin
+                        : distribution == "velvet" ? Density::velvet
+                                                   : Density::ndf;
                 sigma = a.number(kSigma);
                 s.correlation_width = radians(a.number(kCorrelation));
                 const std::string diffuse = a.string(kDiffuse);
@@ -246,9 +249,9 @@ const ModelKind& ashikhmin_model_kind() {
                 s.theta_nodes = static_cast<int>(a.integer(kThetaNodes));
                 s.phi_nodes = static_cast<int>(a.integer(kPhiNodes));
             }
-            auto density = [distribution, sigma](const Ndf& ndf) {
-                return distribution == "satin"    ? satin_density()
-                       : distribution == "velvet" ? velvet_density(sigma)
+            auto density = [which, sigma](const Ndf& ndf) {
+                return which == Density::satin    ? satin_density()
+                       : which == Density::velvet ? velvet_density(sigma)
                                                   : density_of(ndf);
             };
             ModelChoice m;

@@ -17,8 +17,7 @@ Comparison compare_model(const TraceResult& sim, bool all_orders, const ModelMap
         MB > 1 ? batch_stderr(model.energy_batches, MB) : std::vector<double>(map, 0.0);
     const std::vector<double>& m = model.energy;
     Comparison c;
-    for (auto* v : {&c.sim_albedo, &c.sim_albedo_stderr, &c.model_albedo, &c.model_albedo_stderr,
-                    &c.relative_difference, &c.relative_difference_stderr, &c.sigmas, &c.distance,
+    for (auto* v : {&c.model_albedo, &c.relative_difference, &c.relative_difference_stderr, &c.sigmas, &c.distance,
                     &c.distance_stderr})
         v->assign(nc, 0.0);
     c.ratio.assign(map, 0.0), c.ratio_stderr.assign(map, 0.0);
@@ -44,8 +43,7 @@ Comparison compare_model(const TraceResult& sim, bool all_orders, const ModelMap
             MB > 1 ? batch_stderr(
                          MB, [&](int b) { return sum_cells(&model.energy_batches[b * map], k); })
                    : model.relative_tolerance * a_m;
-        c.sim_albedo[k] = a_s, c.sim_albedo_stderr[k] = e_s;
-        c.model_albedo[k] = a_m, c.model_albedo_stderr[k] = e_m;
+        c.model_albedo[k] = a_m;
         if (a_m > 0) {
             c.relative_difference[k] = (a_s - a_m) / a_m;
             c.relative_difference_stderr[k] =

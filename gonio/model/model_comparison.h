@@ -20,7 +20,7 @@ struct ModelMap {
 
 // Per channel, except the maps (per cell and channel).
 struct Comparison {
-    std::vector<double> sim_albedo, sim_albedo_stderr, model_albedo, model_albedo_stderr;
+    std::vector<double> model_albedo; // the simulated albedos and their errors are in the trace
     // (sim - model) / model, and the difference over its standard error (how many sigmas).
     std::vector<double> relative_difference, relative_difference_stderr, sigmas;
     // sum |f_sim - f_model| Omega_perp / sum f_model Omega_perp (jackknife standard error).
