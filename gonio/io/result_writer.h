@@ -9,7 +9,7 @@
 #include "gonio/config/config.h"
 #include "gonio/io/hdf5_handles.h"
 #include "gonio/io/simulation_result.h"
-#include "gonio/model/case_models.h"
+#include "gonio/io/model_result.h"
 #include "sensor/beckers_sensor.h"
 
 #include <string>

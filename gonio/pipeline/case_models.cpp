@@ -1,4 +1,4 @@
-#include "gonio/model/case_models.h"
+#include "gonio/pipeline/case_models.h"
 
 #include "core/batch_means.h"
 #include "gonio/model/ashikhmin_model.h"
