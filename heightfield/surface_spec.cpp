@@ -52,6 +52,16 @@ const Key kLattice = Key::integer("lattice", {1, 8192}, "domes/holes: features p
                          .noting("at most size/2");
 const Key kRelief =
     Key::number("relief", {1e-6, 100}, "domes/holes: height over radius").fallback(0.5);
+// Every generator: the ensemble.
+const Key kRealisations =
+    Key::integer("realisations", {1, 4096},
+                 "independent surfaces per case, the rays of every incidence spread over them: "
+                 "every error then includes the surfaces' spread (README, \"Surface ensembles\")")
+        .fallback(1.0);
+const Key kMaxRealisations =
+    Key::integer("max_realisations", {2, 4096},
+                 "with `trace.target_error` and an ensemble: the most surfaces the target may add")
+        .fallback(64.0);
 // heitz
 const Key kCorrelation =
     Key::number("correlation_length", {0.5, 1e6}, "heitz: Gaussian correlation length, in samples")
@@ -78,7 +88,23 @@ Generator generator_named(const std::string& name) {
     return by_name<Generator>(kGeneratorNames, name);
 }
 
-SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf) {
+std::uint64_t realisation_seed(std::uint64_t seed, int r) {
+    if (r == 0) return seed;
+    // SplitMix64 of (seed, r): distinct realisations of distinct seeds collide with probability
+    // ~2^-64.
+    std::uint64_t z = seed ^ (0x9e3779b97f4a7c15ull * std::uint64_t(r));
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+SurfaceSpec realisation(const SurfaceSpec& spec, int r) {
+    SurfaceSpec s = spec;
+    s.seed = realisation_seed(spec.seed, r);
+    return s;
+}
+
+SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf, bool target) {
     SurfaceSpec s;
     // Its own seed keeps one surface while the rays' seed varies (their spread is then the
     // Monte Carlo error alone).
@@ -88,7 +114,20 @@ SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf) {
         s.input = r.path(kInput);
         s.edges = by_name<Edges>(kEdgeNames, r.string(kEdges));
         s.generator = Generator::input;
+        if (r.has(kRealisations.name) && r.integer(kRealisations) > 1)
+            r.fail(kRealisations.name, "a measured map is one surface: an ensemble needs a "
+                                       "generator");
         return s;
+    }
+    s.realisations = static_cast<int>(r.integer(kRealisations));
+    if (r.has(kMaxRealisations.name)) {
+        if (!target || s.realisations < 2)
+            r.fail(kMaxRealisations.name, "applies only with trace.target_error and "
+                                          "surface.realisations >= 2");
+        s.max_realisations = static_cast<int>(r.integer(kMaxRealisations));
+        if (s.max_realisations < s.realisations)
+            r.fail(kMaxRealisations.name, "must be at least surface.realisations (" +
+                                              std::to_string(s.realisations) + ")");
     }
     s.generator = by_name<Generator>(kGeneratorNames, r.string(kGenerator));
     s.size = static_cast<int>(r.integer(kSize));
@@ -115,7 +154,10 @@ SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf) {
 }
 
 std::vector<KeyGroup> surface_key_groups() {
-    return {{"surface", "", "", {kGenerator, kSeed, kSize, kSpacing, kInput, kEdges}},
+    return {{"surface",
+             "",
+             "",
+             {kGenerator, kSeed, kSize, kSpacing, kInput, kEdges, kRealisations, kMaxRealisations}},
             {"surface",
              "sliced-matching, algorithm1",
              "iterative Frankot-Chellappa with matching [R19 Algorithm 1]",

@@ -45,11 +45,22 @@ struct SurfaceSpec {
     double relief = 0.5;           // domes/holes: feature height over its radius
     std::string input;             // an EXR height map to load instead of generating
     Edges edges = Edges::periodic; // loaded maps
+    // An ensemble: independent surfaces of the same distribution (realisation r has the seed
+    // realisation_seed(seed, r)), so that errors include the surfaces' spread.
+    int realisations = 1;
+    int max_realisations = 64; // with an accuracy target: how far it may grow the ensemble
 };
+
+// The seed of realisation r: `seed` itself for r = 0 (one surface is the surface of a run without
+// an ensemble), a hash of (seed, r) otherwise, so that two seeds share no surface.
+std::uint64_t realisation_seed(std::uint64_t seed, int r);
+// The spec of realisation r (its seed; the ensemble keys do not define a surface).
+SurfaceSpec realisation(const SurfaceSpec& spec, int r);
 
 // Reads [surface] for a case whose distribution is `ndf`; `seed` is the run's seed (the default
 // of surface.seed).
-SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf);
+// `target`: the case has an accuracy target (surface.max_realisations applies only then).
+SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf, bool target);
 // The [surface] keys: common ones, then each generator's.
 std::vector<KeyGroup> surface_key_groups();
 

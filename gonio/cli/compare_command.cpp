@@ -62,6 +62,13 @@ int run_compare_command(const std::string& path) {
                             std::printf(" %10s\n", "-");
                     }
     }
+    // What the errors above include: with one surface, only the rays.
+    for (const CaseSummary& c : s.cases)
+        if (auto scope = c.attributes.find("error_scope");
+            scope != c.attributes.end() && scope->second == "rays")
+            std::printf("%s: errors are those of the rays on one surface, conditional on it "
+                        "(surface.realisations >= 2 includes the surfaces' spread)\n",
+                        c.name.c_str());
     return 0;
 }
 

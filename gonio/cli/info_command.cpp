@@ -1,6 +1,7 @@
 #include "gonio/cli/commands.h"
 #include "gonio/io/result_reader.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -8,6 +9,20 @@
 namespace gonio {
 
 namespace {
+
+// What a case's standard errors include.
+std::string scope_text(const CaseSummary& c) {
+    const std::string scope = c.attributes.at("error_scope");
+    if (scope == "rays+surface") {
+        double most = 0;
+        if (auto r = c.runs.find("realisations"); r != c.runs.end())
+            for (double v : r->second) most = std::max(most, v);
+        return "rays+surface (up to " + std::to_string(int(most)) +
+               " independent surfaces: the error of the NDF's BSDF)";
+    }
+    return "rays (one surface: conditional on it; surface.realisations >= 2 includes the "
+           "surfaces' spread)";
+}
 
 std::string attribute(const std::map<std::string, std::string>& a, const std::string& k) {
     auto it = a.find(k);
@@ -40,6 +55,8 @@ void print_json(const ResultSummary& s) {
         jc["channels"] = c.channels;
         jc["wavelength_nm"] = c.wavelength_nm;
         jc["models"] = c.models;
+        if (c.attributes.count("error_scope")) // simulated cases, format 2
+            jc["error_scope"] = attribute(c.attributes, "error_scope");
         if (!c.timings.empty()) jc["timings"] = timings_json(c.timings);
         json incidences = json::array();
         const size_t np = c.phi_i_deg.size(), nc = c.channels;
@@ -96,6 +113,8 @@ void print_text(const ResultSummary& s) {
                 std::printf("%s%g nm", k ? ", " : "", c.wavelength_nm[k]);
             std::printf(")");
         }
+        if (c.attributes.count("error_scope"))
+            std::printf("\n  standard errors: %s", scope_text(c).c_str());
         // Each quantity with its standard error beside it, when the file has one.
         auto is_error = [](const std::string& name) {
             return name.size() > 7 && name.compare(name.size() - 7, 7, "_stderr") == 0;

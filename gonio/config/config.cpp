@@ -205,7 +205,7 @@ class Loader {
         c.trace = read_trace(trace);
         c.model = read_models(reader(t, path, "model"), c.material, c.ndf, c.trace.rays);
         TableReader surface = reader(t, path, "surface");
-        c.surface = read_surface(surface, seed_, *c.ndf);
+        c.surface = read_surface(surface, seed_, *c.ndf, c.trace.target.active());
         return c;
     }
 

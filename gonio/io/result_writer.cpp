@@ -282,6 +282,15 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
     g.put("segments", sim.segments);
     g.put("trace_seconds", sim.seconds);
     g.put("rounds", sim.rounds);
+    g.put("realisations", sim.realisations);
+    h5::write_string_attribute(g.group, "error_scope", sim.error_scope);
+    if (sim.error_scope == "rays+surface") {
+        g.put("surface_share_l1_albedo", sim.share_l1_albedo);
+        g.put("surface_share_l2plus_albedo", sim.share_l2plus_albedo);
+        g.put("surface_share_linf_albedo", sim.share_linf_albedo);
+        g.put("surface_share_l1_cells", sim.share_l1_cells);
+        g.put("surface_share_linf_cells", sim.share_linf_cells);
+    }
     g.put("achieved_error", sim.achieved_error);
     h5::write_int_attribute(g.group, "batches", c.trace.batches);
     h5::write_string_list_attribute(g.group, "stop", sim.stop);

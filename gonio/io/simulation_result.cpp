@@ -76,6 +76,8 @@ void SimulationResult::allocate(const TraceResult& r, size_t models) {
     segments = Array(per_incidence, s2, "1", "ray segments (rtcIntersect1 calls)");
     seconds = Array(per_incidence, s2, "s", "wall time of the tracing");
     rounds = Array(per_incidence, s2, "1", "rounds of rays given to every batch");
+    realisations =
+        Array(per_incidence, s2, "1", "independent surfaces the incidence was traced on");
     achieved_error =
         Array(per_incidence, s2, "1",
               "the accuracy target's relative standard error when the run stopped (-1: no target)");
@@ -88,8 +90,28 @@ void SimulationResult::allocate(const TraceResult& r, size_t models) {
     }
 }
 
-void SimulationResult::append(const TraceResult& r, const std::vector<Comparison>& models) {
-    if (done_ == 0) allocate(r, models.size());
+void SimulationResult::append(const TraceResult& r, const std::vector<Comparison>& models,
+                              const SurfaceShares* shares, int surfaces) {
+    if (done_ == 0) {
+        allocate(r, models.size());
+        error_scope = shares ? "rays+surface" : "rays";
+        if (shares) {
+            const std::vector<size_t> s3{theta_i_deg_.size(), phi_i_deg_.size(),
+                                         size_t(r.channels)};
+            const std::vector<std::string> dims{"theta_i", "phi_i", "channel"};
+            auto share = [&](const std::string& what) {
+                return Array(dims, s3, "1", "the surfaces' share of the variance of " + what);
+            };
+            share_l1_albedo = share("the L1 albedo");
+            share_l2plus_albedo = share("the L2+ albedo");
+            share_linf_albedo = share("the L-infinity albedo");
+            share_l1_cells = share("the L1 BRDF (median over the cells >= 0.1 of the peak)");
+            share_linf_cells =
+                share("the L-infinity BRDF (median over the cells >= 0.1 of the peak)");
+        }
+    }
+    if ((shares != nullptr) != (error_scope == "rays+surface"))
+        throw std::logic_error("SimulationResult: ensembles and single surfaces mixed");
     if (complete()) throw std::logic_error("SimulationResult: more incidences than the sweep");
     if (r.orders != orders_ || models.size() != comparisons.size())
         throw std::logic_error("SimulationResult: an incidence of another layout");
@@ -144,6 +166,14 @@ void SimulationResult::append(const TraceResult& r, const std::vector<Comparison
     segments.at({t, p}) = double(r.segments);
     seconds.at({t, p}) = r.seconds;
     rounds.at({t, p}) = double(r.rounds);
+    realisations.at({t, p}) = double(surfaces);
+    if (shares) {
+        share_l1_albedo.put({t, p}, shares->l1_albedo);
+        share_l2plus_albedo.put({t, p}, shares->l2plus_albedo);
+        share_linf_albedo.put({t, p}, shares->linf_albedo);
+        share_l1_cells.put({t, p}, shares->l1_cells);
+        share_linf_cells.put({t, p}, shares->linf_cells);
+    }
     achieved_error.at({t, p}) = r.achieved_error;
     stop.push_back(r.stop);
     for (size_t m = 0; m < models.size(); ++m) {

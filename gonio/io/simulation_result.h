@@ -48,7 +48,10 @@ class SimulationResult {
                      const BeckersSensor& sensor);
 
     // Appends the next incidence's trace and its models' comparisons (in the case's model order).
-    void append(const TraceResult& r, const std::vector<Comparison>& models);
+    // An ensemble's trace (its batches are the surfaces) comes with its surfaces' variance shares
+    // and their number.
+    void append(const TraceResult& r, const std::vector<Comparison>& models,
+                const SurfaceShares* shares = nullptr, int realisations = 1);
     // Incidences appended so far, and whether the sweep is complete.
     size_t incidences() const { return done_; }
     bool complete() const { return done_ == theta_i_deg_.size() * phi_i_deg_.size(); }
@@ -59,8 +62,14 @@ class SimulationResult {
     Array unaccounted;                    // [theta_i, phi_i, channel]
     Array rays, segments, seconds, rounds, achieved_error; // [theta_i, phi_i]
     std::vector<std::string> stop;                         // per incidence, theta_i major
-    std::vector<ComparisonArrays> comparisons;             // per model of the case
-    std::string surface; // where the surface came from (cache path, input)
+    // The errors' scope: "rays" (one surface: conditional on it) or "rays+surface" (an ensemble).
+    std::string error_scope = "rays";
+    Array realisations; // [theta_i, phi_i]: surfaces each incidence was traced on
+    // Ensembles: the surfaces' share of each variance [theta_i, phi_i, channel]
+    // (surface_ensemble.h).
+    Array share_l1_albedo, share_l2plus_albedo, share_linf_albedo, share_l1_cells, share_linf_cells;
+    std::vector<ComparisonArrays> comparisons; // per model of the case
+    std::string surface;                       // where the surface came from (cache path, input)
 
   private:
     void allocate(const TraceResult& r, size_t models);

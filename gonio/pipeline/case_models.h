@@ -2,8 +2,8 @@
 // The models a case asks for ([model] models), built once per case and evaluated on the sensor
 // cells at each incidence of its sweep. Each result says which simulated quantity it is held
 // against: single scattering (L1) or every order (L-infinity).
-#include "gonio/io/model_result.h"
 #include "gonio/config/config.h"
+#include "gonio/io/model_result.h"
 #include "gonio/model/brdf_model.h"
 #include "gonio/model/model_comparison.h"
 #include "heightfield/heightfield.h"

@@ -5,8 +5,8 @@
 // every phase. `gonio run` and `gonio model` only parse arguments, call these and print.
 #include "gonio/config/config.h"
 #include "gonio/io/simulation_result.h"
-#include "gonio/pipeline/case_models.h"
 #include "gonio/model/model_comparison.h"
+#include "gonio/pipeline/case_models.h"
 #include "gonio/pipeline/phase_times.h"
 #include "gonio/trace/trace_result.h"
 #include "heightfield/surface_cache.h"
