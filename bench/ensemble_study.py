@@ -101,8 +101,9 @@ def bright(ref):
 
 def sigmas(a, b, mask):
     """rms over the bright cells of the difference in standard errors of the difference."""
-    d = (a["cells"] - b["cells"]) / np.sqrt(a["cells_err"] ** 2 + b["cells_err"] ** 2)
-    return float(np.sqrt(np.mean(d[mask] ** 2)))
+    e = np.sqrt(a["cells_err"] ** 2 + b["cells_err"] ** 2)
+    keep = mask & (e > 0)
+    return float(np.sqrt(np.mean(((a["cells"] - b["cells"])[keep] / e[keep]) ** 2)))
 
 
 def distance(x, ref):

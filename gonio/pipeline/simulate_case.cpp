@@ -75,6 +75,7 @@ CaseResult simulate_ensemble(const CaseConfig& c, const CaseRunSettings& s, cons
         st.per_surface = (std::max(1LL, c.trace.rays) + first - 1) / first;
     }
     std::unique_ptr<CaseModels> models;
+    std::string first_surface; // where realisation 0 is, for the file
     const auto start = Clock::now();
     for (int pass = 0;; ++pass) {
         int needed = 0;
@@ -90,6 +91,7 @@ CaseResult simulate_ensemble(const CaseConfig& c, const CaseRunSettings& s, cons
             }
             if (work.empty() && !(r == 0 && !models)) continue;
             const HeightField surface = make_surface(c, realisation(c.surface, r), s, o, result);
+            if (r == 0) first_surface = result.surface_origin.cache_path;
             auto t = Clock::now();
             const Scene scene(surface);
             t = result.phases.add_since("scene", t);
@@ -169,7 +171,11 @@ CaseResult simulate_ensemble(const CaseConfig& c, const CaseRunSettings& s, cons
     // The models, once per incidence, and the comparison with the ensemble.
     SimulationResult& sim = result.simulation;
     sim = SimulationResult(c.theta_i_deg, c.phi_i_deg, sensor);
-    sim.surface = result.surface_origin.cache_path;
+    int most_surfaces = 0;
+    for (const State& st : states)
+        most_surfaces = std::max(most_surfaces, st.ensemble.realisations());
+    sim.surface = "an ensemble of " + std::to_string(most_surfaces) + " surfaces, the first " +
+                  (first_surface.empty() ? std::string("not cached") : first_surface);
     double model_seconds = 0;
     const auto t0 = Clock::now();
     for (size_t i = 0; i < n; ++i) {

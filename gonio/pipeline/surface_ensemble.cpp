@@ -38,10 +38,12 @@ void IncidenceEnsemble::add(TraceResult t) {
     s.variance.linf_albedo = ray_variance(t.ledger_batches.reflected, B, no, 0, no);
     s.variance.l1_cells = ray_variance(t.energy_batches, B, no, 0, 1);
     s.variance.linf_cells = ray_variance(t.energy_batches, B, no, 0, no);
-    t.energy_batches.clear(), t.transmitted_batches.clear();
-    t.ledger_batches = {};
-    t.energy_stderr.clear(), t.transmitted_stderr.clear();
-    t.ledger_stderr = {};
+    // Freed, not just cleared: an ensemble keeps hundreds of these (B times their means each).
+    for (auto v : {&t.energy_batches, &t.transmitted_batches, &t.energy_stderr,
+                   &t.transmitted_stderr})
+        std::vector<double>().swap(*v);
+    t.ledger_batches = EnergyLedger{};
+    t.ledger_stderr = EnergyLedger{};
     s.mean = std::move(t);
     surfaces_.push_back(std::move(s));
 }
