@@ -1,0 +1,105 @@
+#include "gonio/table/result_case.h"
+
+#include "gonio/io/hdf5_handles.h"
+#include "gonio/io/result_reader.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace gonio {
+
+bool case_is_isotropic(const CaseConfig& c) {
+    if (c.surface.generator == Generator::input || c.surface.constraint != Constraint::none)
+        return false;
+    const Ndf& ndf = *c.ndf;
+    for (double theta_deg : {3.0, 12.0, 27.0, 45.0, 63.0, 78.0, 86.0}) {
+        const double reference = ndf.D(spherical_direction(radians(theta_deg), 0.0));
+        for (double phi_deg : {17.0, 45.0, 90.0, 131.0, 200.0, 293.0}) {
+            const double d = ndf.D(spherical_direction(radians(theta_deg), radians(phi_deg)));
+            if (std::abs(d - reference) > 1e-9 * std::max(std::abs(reference), 1e-300))
+                return false;
+        }
+    }
+    return true;
+}
+
+ResultCase read_result_case(const std::string& file, const std::string& name) {
+    const ResultSummary summary = read_result_summary(file);
+    if (summary.cases.empty()) throw std::runtime_error(file + ": holds no case");
+    const CaseSummary* found = nullptr;
+    std::string names;
+    for (const CaseSummary& c : summary.cases) {
+        names += (names.empty() ? "" : ", ") + c.name;
+        if (c.name == name) found = &c;
+    }
+    if (name.empty()) {
+        if (summary.cases.size() > 1)
+            throw std::runtime_error(file + " holds " + std::to_string(summary.cases.size()) +
+                                     " cases (" + names + "): choose one with --case");
+        found = &summary.cases.front();
+    }
+    if (!found)
+        throw std::runtime_error(file + ": no case named '" + name + "' (it holds " + names + ")");
+
+    ResultCase r;
+    r.file = file;
+    r.name = found->name;
+    r.theta_i_deg = found->theta_i_deg;
+    r.phi_i_deg = found->phi_i_deg;
+    r.wavelength_nm = found->wavelength_nm;
+    r.cells = found->cells;
+    r.channels = found->channels;
+    if (auto m = found->attributes.find("material"); m != found->attributes.end())
+        r.material = m->second;
+    const auto effective = summary.attributes.find("config_effective_toml");
+    if (effective == summary.attributes.end())
+        throw std::runtime_error(file + ": no config_effective_toml attribute to re-read the case");
+    const auto config_path = summary.attributes.find("config_path");
+    Config cfg;
+    try {
+        cfg = parse_config(effective->second,
+                           config_path != summary.attributes.end()
+                               ? config_path->second + " (as stored in " + file + ")"
+                               : file);
+    } catch (const std::exception& e) {
+        throw std::runtime_error(file + ": cannot re-read the config it stores: " + e.what());
+    }
+    bool matched = false;
+    for (CaseConfig& c : cfg.cases)
+        if (c.name == r.name) {
+            r.config = std::move(c);
+            matched = true;
+        }
+    if (!matched)
+        throw std::runtime_error(file + ": its stored config has no case named '" + r.name + "'");
+    r.simulated = r.has("brdf_linf");
+    r.transmits = r.has("btdf_tinf");
+    r.isotropic = case_is_isotropic(r.config);
+    return r;
+}
+
+namespace {
+h5::Handle open_group(const std::string& file, const std::string& name, h5::Handle& f) {
+    h5::silence_errors();
+    f = h5::Handle(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
+                   ("open " + file).c_str());
+    return h5::Handle(H5Gopen2(f, name.c_str(), H5P_DEFAULT), H5Gclose,
+                      ("open group " + name + " of " + file).c_str());
+}
+} // namespace
+
+bool ResultCase::has(const std::string& dataset) const {
+    h5::Handle f;
+    const h5::Handle g = open_group(file, name, f);
+    return H5Lexists(g, dataset.c_str(), H5P_DEFAULT) > 0;
+}
+
+std::vector<double> ResultCase::read(const std::string& dataset) const {
+    h5::Handle f;
+    const h5::Handle g = open_group(file, name, f);
+    if (H5Lexists(g, dataset.c_str(), H5P_DEFAULT) <= 0)
+        throw std::runtime_error(file + ": case " + name + " has no dataset " + dataset);
+    return h5::read_doubles(g, dataset);
+}
+
+} // namespace gonio
