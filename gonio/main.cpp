@@ -1,6 +1,7 @@
 // gonio: a virtual gonioreflectometer for explicit microfacet surfaces. See README.md.
 #include "core/config_error.h"
 #include "gonio/cli/commands.h"
+#include "gonio/export/export.h"
 #include "gonio_version.h"
 
 #include <CLI/CLI.hpp>
@@ -89,6 +90,24 @@ int main(int argc, char** argv) {
     keys_cmd->add_flag("--markdown", keys_markdown,
                        "Print the README's configuration table (Markdown)");
 
+    gonio::ExportOptions exp;
+    CLI::App* export_cmd = app.add_subcommand(
+        "export", "Write a simulated case in a format renderers and BRDF tools read");
+    export_cmd->add_option("file", exp.input, "HDF5 result file of gonio run")->required();
+    export_cmd->add_option("--format", exp.format,
+                           "rgl (Mitsuba 3 / pbrt-v4 measured), merl, astm, albedo (CSV)")
+        ->required()
+        ->check(CLI::IsMember({"rgl", "merl", "astm", "albedo"}));
+    export_cmd->add_option("-o,--output", exp.output, "Output file")->required();
+    export_cmd->add_option("--case", exp.case_name, "The case to export (default: the only one)");
+    export_cmd->add_option("--orders", exp.orders, "l1, l2plus, linf (default) or t (astm)")
+        ->check(CLI::IsMember({"l1", "l2plus", "linf", "t"}));
+    export_cmd->add_flag("--rgb", exp.rgb, "rgl: an rgb field (Mitsuba's RGB variants)");
+    export_cmd->add_option("--sweep", exp.sweep,
+                           "albedo: every case, with this config key (e.g. ndf.alpha) as a column");
+    export_cmd->add_flag("--overwrite", exp.overwrite, "Replace an existing output file");
+    export_cmd->add_flag("-q,--quiet", exp.quiet, "Print nothing on success");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -103,6 +122,7 @@ int main(int argc, char** argv) {
         if (*compare_cmd) return gonio::run_compare_command(compare_path);
         if (*info_cmd) return gonio::run_info_command(info_path, info_json);
         if (*keys_cmd) return gonio::run_keys_command(keys_markdown);
+        if (*export_cmd) return gonio::run_export_command(exp);
     } catch (const gonio::ConfigError& e) {
         std::fprintf(stderr, "gonio: error: %s\n", e.what());
         return 2;

@@ -59,6 +59,11 @@ int run_compare_command(const std::string& path);
 // `gonio keys [--markdown]`: every config key, from the components' declarations.
 int run_keys_command(bool markdown);
 
+struct ExportOptions;
+// `gonio export FILE --format F -o OUT`: the simulated BSDF in a format other tools read
+// (gonio/export/export.h); exit 3 when the format cannot hold the case.
+int run_export_command(const ExportOptions& options);
+
 // `gonio info FILE [--json]`.
 int run_info_command(const std::string& path, bool as_json);
 

@@ -137,6 +137,20 @@ BsdfTable::BsdfTable(TableData data) : data_(std::move(data)) {
             const size_t stored = theta_order[ti] * np + phi_order[pj];
             Node& n = nodes_[ti * phi_.size() + pj];
             n.f.assign(data_.f.begin() + stored * N * C, data_.f.begin() + (stored + 1) * N * C);
+            // An isotropic lobe is symmetric about its plane of incidence: at phi_i = 0 or 180
+            // the mirror image of cell j of a ring is cell n - 1 - j, and their mean is the
+            // better estimate of both (half the variance where the lobe is even).
+            if (data_.isotropic && std::fmod(phi_[pj], 180.0) == 0) {
+                const std::vector<double> raw = n.f;
+                for (int r = 0; r < grid_->rings(); ++r) {
+                    const int first = grid_->ring_first(r), count = grid_->ring_count(r);
+                    for (int j = 0; j < count; ++j)
+                        for (size_t ch = 0; ch < C; ++ch)
+                            n.f[size_t(first + j) * C + ch] =
+                                0.5 * (raw[size_t(first + j) * C + ch] +
+                                       raw[size_t(first + count - 1 - j) * C + ch]);
+                }
+            }
             n.albedo.assign(C, 0.0);
             n.albedo_stderr.assign(C, 0.0);
             for (size_t ch = 0; ch < C; ++ch) {

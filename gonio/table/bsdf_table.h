@@ -8,7 +8,9 @@
 // (interpolation keeps energy). Across incidences it is linear in theta_i (clamped at the ends of
 // the sweep) and, for anisotropic cases, linear in phi_i with wrapping over the full turn. An
 // isotropic case is rotated instead: the lobe swept at phi_i is turned to the query's azimuth
-// (R19 sweeps isotropic cases at phi_i = 0 only); several swept azimuths are averaged.
+// (R19 sweeps isotropic cases at phi_i = 0 only); several swept azimuths are averaged, and a
+// lobe swept at phi_i = 0 or 180 degrees is averaged with its mirror image in the plane of
+// incidence (an isotropic BSDF's symmetry).
 //
 // f is a mixture of node lobes with non-negative weights, so sampling picks a node in proportion
 // to weight times node integral and then samples that node's lobe exactly: the pdf returned is

@@ -55,6 +55,7 @@ ResultCase read_result_case(const std::string& file, const std::string& name) {
     if (effective == summary.attributes.end())
         throw std::runtime_error(file + ": no config_effective_toml attribute to re-read the case");
     const auto config_path = summary.attributes.find("config_path");
+    r.effective_toml = effective->second;
     Config cfg;
     try {
         cfg = parse_config(effective->second,
@@ -64,18 +65,26 @@ ResultCase read_result_case(const std::string& file, const std::string& name) {
     } catch (const std::exception& e) {
         throw std::runtime_error(file + ": cannot re-read the config it stores: " + e.what());
     }
-    bool matched = false;
-    for (CaseConfig& c : cfg.cases)
-        if (c.name == r.name) {
-            r.config = std::move(c);
-            matched = true;
-        }
-    if (!matched)
-        throw std::runtime_error(file + ": its stored config has no case named '" + r.name + "'");
+    // The file's groups are the config's cases in order (a lone unnamed case is named after the
+    // config file, which the stored text does not carry).
+    const size_t index = size_t(found - summary.cases.data());
+    if (cfg.cases.size() != summary.cases.size())
+        throw std::runtime_error(file + ": its stored config has " +
+                                 std::to_string(cfg.cases.size()) + " cases, the file " +
+                                 std::to_string(summary.cases.size()));
+    r.config = std::move(cfg.cases[index]);
+    r.config.name = r.name;
     r.simulated = r.has("brdf_linf");
     r.transmits = r.has("btdf_tinf");
     r.isotropic = case_is_isotropic(r.config);
     return r;
+}
+
+std::vector<std::string> read_result_case_names(const std::string& file) {
+    std::vector<std::string> names;
+    for (const CaseSummary& c : read_result_summary(file).cases) names.push_back(c.name);
+    if (names.empty()) throw std::runtime_error(file + ": holds no case");
+    return names;
 }
 
 namespace {

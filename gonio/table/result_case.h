@@ -12,6 +12,7 @@ namespace gonio {
 struct ResultCase {
     std::string file, name;
     CaseConfig config;
+    std::string effective_toml; // the file's config_effective_toml
     std::string material;                                      // the case's `material` attribute
     std::vector<double> theta_i_deg, phi_i_deg, wavelength_nm; // as stored (sweep order)
     int cells = 0, channels = 1;
@@ -27,6 +28,8 @@ struct ResultCase {
 // The case `name` of `file`, or its only case when `name` is empty. Throws std::runtime_error
 // with the reason (no such file, not a result file, no such case: the list of cases).
 ResultCase read_result_case(const std::string& file, const std::string& name);
+// The names of the file's cases, in config order.
+std::vector<std::string> read_result_case_names(const std::string& file);
 
 // Whether the case's BSDF is invariant under rotations about the normal: an isotropic NDF
 // (checked numerically on a grid of directions) on a generated, unconstrained surface (a loaded

@@ -10,7 +10,9 @@ double sample_linear(double u, double a, double b) {
     if (a == b || a + b <= 0) return u;
     // Inverse of F(x) = (a x + (b - a) x^2 / 2) / ((a + b) / 2), in the form without
     // cancellation.
-    const double x = u * (a + b) / (a + std::sqrt(a * a * (1 - u) + b * b * u));
+    const double denominator = a + std::sqrt(a * a * (1 - u) + b * b * u);
+    if (denominator <= 0) return 0; // u = 0 on a density that starts at 0
+    const double x = u * (a + b) / denominator;
     return std::min(x, 0x1.fffffffffffffp-1);
 }
 

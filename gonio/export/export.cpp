@@ -1,0 +1,83 @@
+#include "gonio/export/export.h"
+
+#include "gonio/export/atomic_output.h"
+#include "gonio/export/export_formats.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace gonio {
+
+const std::vector<std::string>& export_formats() {
+    static const std::vector<std::string> formats{"rgl", "merl", "astm", "albedo"};
+    return formats;
+}
+
+TableOrder requested_order(const ExportOptions& o, bool transmission_allowed) {
+    TableOrder order;
+    try {
+        order = table_order_named(o.orders);
+    } catch (const std::invalid_argument& e) {
+        throw ExportRefused(std::string("--orders: ") + e.what());
+    }
+    if (order == TableOrder::transmission && !transmission_allowed)
+        throw ExportRefused(o.format + " holds reflection only: --orders t (transmission) cannot "
+                                       "be written to it");
+    return order;
+}
+
+void require_hemisphere_sweep(const BsdfTable& t, const std::string& format) {
+    const auto& theta = t.theta_nodes();
+    double widest = 0;
+    for (size_t k = 1; k < theta.size(); ++k) widest = std::max(widest, theta[k] - theta[k - 1]);
+    std::string why;
+    if (theta.front() > 1) why = "it starts at theta_i = " + std::to_string(theta.front());
+    else if (theta.back() < 80) why = "it ends at theta_i = " + std::to_string(theta.back());
+    else if (widest > 10) why = "it has a gap of " + std::to_string(widest) + " degrees";
+    if (!why.empty())
+        throw ExportRefused("the sweep is too sparse for " + format + " (" + why +
+                            "): it needs theta_i from 0 to at least 80 degrees in steps of at "
+                            "most 10");
+}
+
+BsdfTable load_table(const ResultCase& c, TableOrder order, const std::string& format) {
+    if (!c.simulated)
+        throw ExportRefused(c.file + ": case " + c.name +
+                            " holds models only (gonio model): no simulated orders to export to " +
+                            format);
+    try {
+        return BsdfTable(table_data(c, order));
+    } catch (const std::invalid_argument& e) {
+        throw ExportRefused(std::string(e.what()));
+    } catch (const std::runtime_error& e) {
+        throw ExportRefused(std::string(e.what()));
+    }
+}
+
+ExportReport export_result(const ExportOptions& o) {
+    const auto start = std::chrono::steady_clock::now();
+    bool known = false;
+    for (const std::string& f : export_formats()) known = known || f == o.format;
+    if (!known) throw ExportRefused("unknown format '" + o.format + "' (rgl, merl, astm, albedo)");
+    if (o.output.empty()) throw ExportRefused("no output file (-o)");
+    if (o.rgb && o.format != "rgl") throw ExportRefused("--rgb applies to the rgl format only");
+    if (!o.sweep.empty() && o.format != "albedo")
+        throw ExportRefused("--sweep applies to the albedo format only");
+    // With --sweep the albedo table reads every case; the first one stands for the file here.
+    const ResultCase c = read_result_case(o.input, o.sweep.empty() ? o.case_name : [&] {
+        return o.case_name.empty() ? read_result_case_names(o.input).front() : o.case_name;
+    }());
+    ExportReport report;
+    report.output = o.output;
+    AtomicOutput out(o.output, o.overwrite, o.format == "rgl" || o.format == "merl");
+    if (o.format == "rgl") write_rgl(c, o, out.stream(), report);
+    else if (o.format == "merl") write_merl(c, o, out.stream(), report);
+    else if (o.format == "astm") write_astm(c, o, out.stream(), report);
+    else write_albedo(c, o, out.stream(), report);
+    report.bytes = out.commit();
+    report.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return report;
+}
+
+} // namespace gonio
