@@ -94,8 +94,9 @@ int main(int argc, char** argv) {
     CLI::App* export_cmd = app.add_subcommand(
         "export", "Write a simulated case in a format renderers and BRDF tools read");
     export_cmd->add_option("file", exp.input, "HDF5 result file of gonio run")->required();
-    export_cmd->add_option("--format", exp.format,
-                           "rgl (Mitsuba 3 / pbrt-v4 measured), merl, astm, albedo (CSV)")
+    export_cmd
+        ->add_option("--format", exp.format,
+                     "rgl (Mitsuba 3 / pbrt-v4 measured), merl, astm, albedo (CSV)")
         ->required()
         ->check(CLI::IsMember({"rgl", "merl", "astm", "albedo"}));
     export_cmd->add_option("-o,--output", exp.output, "Output file")->required();

@@ -18,11 +18,12 @@ inline std::string fixture(const std::string& name, const std::string& config,
     fs::create_directories(dir);
     const fs::path out = dir / (name + "_" + std::to_string(key) + ".h5");
     if (fs::exists(out)) return out.string();
-    const fs::path cfg = dir / (name + "_" + std::to_string(key) + "_" + std::to_string(::getpid()) + ".toml");
+    const fs::path cfg =
+        dir / (name + "_" + std::to_string(key) + "_" + std::to_string(::getpid()) + ".toml");
     write(cfg, config);
-    const Run r = run_gonio(dir, command + " '" + cfg.string() + "' -o '" + out.string() +
-                                     "' --overwrite --quiet" +
-                                     (command == "run" ? " --no-cache" : ""));
+    const Run r =
+        run_gonio(dir, command + " '" + cfg.string() + "' -o '" + out.string() +
+                           "' --overwrite --quiet" + (command == "run" ? " --no-cache" : ""));
     fs::remove(cfg);
     if (r.code != 0) throw std::runtime_error("fixture " + name + ": " + r.err);
     return out.string();
@@ -35,9 +36,11 @@ inline std::string gold_table() {
     return fixture("gold", "seed = 2\n[ndf]\ntype = \"beckmann\"\nalpha = 0.5\n"
                            "[material]\ntype = \"conductor\"\nior = \"Au\"\n"
                            "[spectrum]\nwavelengths = [450, 550, 650]\n"
-                           "[beam]\ntheta_i = [" + theta + "]\nphi_i = 0\n"
-                           "[sensor]\ncells = 1200\n[surface]\nsize = 128\n"
-                           "[trace]\nrays = 262144\n[[case]]\nname = \"gold\"\n");
+                           "[beam]\ntheta_i = [" +
+                               theta +
+                               "]\nphi_i = 0\n"
+                               "[sensor]\ncells = 1200\n[surface]\nsize = 128\n"
+                               "[trace]\nrays = 262144\n[[case]]\nname = \"gold\"\n");
 }
 
 inline std::string sweep_config(const std::string& ndf, const std::string& material, int cells,
@@ -45,10 +48,10 @@ inline std::string sweep_config(const std::string& ndf, const std::string& mater
                                 int last = 85) {
     std::string theta;
     for (int t = 0; t <= last; t += step) theta += (theta.empty() ? "" : ", ") + std::to_string(t);
-    return "seed = 4\nndf = " + ndf + "\nmaterial = " + material + "\n[beam]\ntheta_i = [" +
-           theta + "]\nphi_i = " + phi + "\n[sensor]\ncells = " + std::to_string(cells) +
-           "\n[surface]\nsize = " + std::to_string(size) + "\n[trace]\nrays = " +
-           std::to_string(rays) + "\n";
+    return "seed = 4\nndf = " + ndf + "\nmaterial = " + material + "\n[beam]\ntheta_i = [" + theta +
+           "]\nphi_i = " + phi + "\n[sensor]\ncells = " + std::to_string(cells) +
+           "\n[surface]\nsize = " + std::to_string(size) +
+           "\n[trace]\nrays = " + std::to_string(rays) + "\n";
 }
 
 } // namespace gonio::test

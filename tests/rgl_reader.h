@@ -65,7 +65,8 @@ inline std::map<std::string, TensorField> read_tensor_file(const std::string& pa
         }
         const size_t size = dtype == 1 ? 1 : dtype == 10 ? 4 : 0;
         if (size == 0) throw std::runtime_error(path + ": " + name + " has an unexpected dtype");
-        if (offset + n * size > bytes.size()) throw std::runtime_error(path + ": " + name + " truncated");
+        if (offset + n * size > bytes.size())
+            throw std::runtime_error(path + ": " + name + " truncated");
         for (std::uint64_t e = 0; e < n; ++e) {
             if (dtype == 1) {
                 f.values.push_back(static_cast<unsigned char>(bytes[offset + e]));
@@ -133,7 +134,8 @@ class RglBsdf {
         const Vec3 m = spherical_direction(theta_m, phi_m);
         out.wq = reflect(wp, m);
         if (out.wq.z <= 0) return out;
-        const double jac = std::max(2 * kPi * kPi * um[0] * std::sin(theta_m), 1e-6) * 4 * dot(wp, m);
+        const double jac =
+            std::max(2 * kPi * kPi * um[0] * std::sin(theta_m), 1e-6) * 4 * dot(wp, m);
         out.pdf = vndf_pdf * lum_pdf / jac;
         const double factor = ndf_.eval(um) / (4 * sigma_.eval(u_p(wp)));
         for (int c = 0; c < channels_; ++c)
@@ -150,7 +152,8 @@ class RglBsdf {
     PiecewiseLinear2D grid(const std::string& name, size_t slice, bool normalize) const {
         const TensorField& f = field(name);
         const size_t h = f.shape[f.shape.size() - 2], w = f.shape.back();
-        std::vector<double> d(f.values.begin() + slice * w * h, f.values.begin() + (slice + 1) * w * h);
+        std::vector<double> d(f.values.begin() + slice * w * h,
+                              f.values.begin() + (slice + 1) * w * h);
         return PiecewiseLinear2D(d, int(w), int(h), normalize);
     }
     static PiecewiseLinear2D::Point u_p(const Vec3& w) {

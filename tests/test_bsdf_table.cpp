@@ -115,7 +115,7 @@ TEST_CASE("bsdf table: a constant (Lambertian) table is constant everywhere") {
     CHECK(a == doctest::Approx(0.7).epsilon(1e-12));
 }
 
-TEST_CASE("bsdf table: each node keeps the table's albedo; between nodes it is linear") {
+TEST_CASE("bsdf table: each node keeps the table's albedo, between nodes it is linear") {
     const BsdfTable table(glossy_table({0, 20, 40, 60}, {0}, 1200, true));
     for (int ti = 0; ti < 4; ++ti)
         for (int ch = 0; ch < 2; ++ch) {
@@ -180,7 +180,7 @@ TEST_CASE("bsdf table: an isotropic sweep at phi_i = 0 is rotated to any azimuth
     CHECK(error.back() < 0.1);
 }
 
-TEST_CASE("bsdf table: an anisotropic sweep wraps in phi_i; a partial turn is refused") {
+TEST_CASE("bsdf table: an anisotropic sweep wraps in phi_i, a partial turn is refused") {
     TableData d;
     d.theta_i_deg = {30};
     d.phi_i_deg = {0, 90, 180, 270};

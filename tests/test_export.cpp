@@ -23,8 +23,9 @@ namespace {
 
 std::string export_to(const std::string& input, const std::string& format, const fs::path& out,
                       const std::string& extra = "") {
-    const Run r = run_gonio(out.parent_path(), "export '" + input + "' --format " + format +
-                                                   " -o '" + out.string() + "' --overwrite " + extra);
+    const Run r =
+        run_gonio(out.parent_path(), "export '" + input + "' --format " + format + " -o '" +
+                                         out.string() + "' --overwrite " + extra);
     INFO(r.err);
     REQUIRE(r.code == 0);
     return r.out;
@@ -56,7 +57,8 @@ Merl read_merl(const fs::path& p) {
     return m;
 }
 
-std::vector<std::vector<std::string>> read_csv(const fs::path& p, std::vector<std::string>* comments) {
+std::vector<std::vector<std::string>> read_csv(const fs::path& p,
+                                               std::vector<std::string>* comments) {
     std::ifstream in(p);
     std::vector<std::vector<std::string>> rows;
     std::string line;
@@ -77,7 +79,8 @@ std::vector<std::vector<std::string>> read_csv(const fs::path& p, std::vector<st
 
 } // namespace
 
-TEST_CASE("export rgl: the file read by the specification's rule matches the table at cell centres") {
+TEST_CASE(
+    "export rgl: the file read by the specification's rule matches the table at cell centres") {
     const std::string input = gold_table();
     const fs::path dir = fresh_dir("export_rgl");
     export_to(input, "rgl", dir / "gold.bsdf");
@@ -159,9 +162,10 @@ TEST_CASE("export rgl: importance sampling through the file returns the L-infini
 }
 
 TEST_CASE("export rgl: an anisotropic sweep over the full turn spans [-pi, pi]") {
-    const std::string input = fixture(
-        "aniso", sweep_config("{ type = \"beckmann\", alpha_x = 0.2, alpha_y = 0.5 }",
-                              "{ type = \"mirror\" }", 800, 65536, 128, "[0, 90, 180, 270]", 10, 80));
+    const std::string input =
+        fixture("aniso", sweep_config("{ type = \"beckmann\", alpha_x = 0.2, alpha_y = 0.5 }",
+                                      "{ type = \"mirror\" }", 800, 65536, 128, "[0, 90, 180, 270]",
+                                      10, 80));
     const fs::path dir = fresh_dir("export_rgl_aniso");
     export_to(input, "rgl", dir / "aniso.bsdf");
     const RglBsdf rgl((dir / "aniso.bsdf").string());
@@ -177,7 +181,8 @@ TEST_CASE("export rgl: an anisotropic sweep over the full turn spans [-pi, pi]")
     std::vector<double> errors;
     for (size_t ti = 1; ti < d.theta_i_deg.size(); ++ti)
         for (size_t pj = 0; pj < 4; ++pj) {
-            const Vec3 wp = spherical_direction(radians(d.theta_i_deg[ti]), radians(d.phi_i_deg[pj]));
+            const Vec3 wp =
+                spherical_direction(radians(d.theta_i_deg[ti]), radians(d.phi_i_deg[pj]));
             const double* f = d.f.data() + (ti * 4 + pj) * d.cells;
             const double peak = *std::max_element(f, f + d.cells);
             for (int cell = 0; cell < d.cells; ++cell)
@@ -243,14 +248,18 @@ TEST_CASE("export merl: layout, symmetry in phi_d, reciprocity, and the horizon"
                 // Errors: the stderr of the cell at each end (the interpolated lobes average
                 // several cells: this overstates their noise a little).
                 const double e1 = d.f_stderr[(size_t(a) * d.cells + sensor.lookup(wo)) * 3 + 1];
-                const double e2 = d.f_stderr[(size_t(b) * d.cells +
-                                              sensor.lookup(spherical_direction(radians(5.0 * a), -phi))) * 3 + 1];
+                const double e2 =
+                    d.f_stderr[(size_t(b) * d.cells +
+                                sensor.lookup(spherical_direction(radians(5.0 * a), -phi))) *
+                                   3 +
+                               1];
                 if (e1 > 0 && e2 > 0) z.push_back(std::abs(f1[1] - f2[1]) / std::hypot(e1, e2));
             }
     const double mz = median(z);
     // A normal deviate's median |z| is 0.67; interpolation between swept incidences adds a
     // little, a tracer that breaks reciprocity is off by many standard errors.
-    MESSAGE("reciprocity: median |difference| " << mz << " standard errors over " << z.size() << " pairs");
+    MESSAGE("reciprocity: median |difference| " << mz << " standard errors over " << z.size()
+                                                << " pairs");
     CHECK(z.size() > 200);
     CHECK(mz < 1.5);
 }
@@ -287,9 +296,9 @@ TEST_CASE("export merl: a Lambertian-facet surface gives a near-constant BRDF") 
 }
 
 TEST_CASE("export: a near-mirror (alpha 1e-3) concentrates at the mirror direction") {
-    const std::string input = fixture(
-        "mirror", sweep_config("{ type = \"beckmann\", alpha = 0.001 }", "{ type = \"mirror\" }",
-                               1200, 65536, 64));
+    const std::string input =
+        fixture("mirror", sweep_config("{ type = \"beckmann\", alpha = 0.001 }",
+                                       "{ type = \"mirror\" }", 1200, 65536, 64));
     const fs::path dir = fresh_dir("export_mirror");
     export_to(input, "rgl", dir / "mirror.bsdf");
     export_to(input, "merl", dir / "mirror.binary");
@@ -307,7 +316,8 @@ TEST_CASE("export: a near-mirror (alpha 1e-3) concentrates at the mirror directi
             albedo += s.weight[0] / n;
             near += s.pdf > 0 && angle_between(s.wq, mirror) < 2 * cell;
         }
-        MESSAGE("theta_i " << t << ": " << near << " of " << n << " samples within 2 cells, albedo " << albedo);
+        MESSAGE("theta_i " << t << ": " << near << " of " << n << " samples within 2 cells, albedo "
+                           << albedo);
         CHECK(near > 0.95 * n);
         CHECK(albedo == doctest::Approx(1.0).epsilon(0.03)); // a perfect mirror loses nothing
         // The file's f cos peaks within a cell of the mirror direction (the sensor cannot say
@@ -347,8 +357,8 @@ TEST_CASE("export astm: rows per incidence and cell centre round-trip the file")
             break;
         }
     }
-    CHECK(vars == std::vector<std::string>{"theta_i", "phi_i", "theta_s", "phi_s", "450nm",
-                                           "550nm", "650nm"});
+    CHECK(vars == std::vector<std::string>{"theta_i", "phi_i", "theta_s", "phi_s", "450nm", "550nm",
+                                           "650nm"});
     const ResultCase c = read_result_case(input, "");
     const TableData d = table_data(c, TableOrder::l1);
     const BeckersSensor sensor(d.cells);
@@ -363,7 +373,8 @@ TEST_CASE("export astm: rows per incidence and cell centre round-trip the file")
         REQUIRE(v[0] == radians(d.theta_i_deg[incidence]));
         REQUIRE(v[2] == sensor.cell(int(k)).theta_center);
         REQUIRE(v[3] == sensor.cell(int(k)).phi_center);
-        for (int ch = 0; ch < 3; ++ch) REQUIRE(v[4 + ch] == d.f[(incidence * d.cells + k) * 3 + ch]);
+        for (int ch = 0; ch < 3; ++ch)
+            REQUIRE(v[4 + ch] == d.f[(incidence * d.cells + k) * 3 + ch]);
         ++rows;
     }
     CHECK(rows == points);
@@ -377,11 +388,12 @@ TEST_CASE("export albedo: E(theta_i) per order with errors, and E_avg") {
     std::vector<std::string> comments;
     const auto rows = read_csv(dir / "gold.csv", &comments);
     REQUIRE(rows.size() == 1 + 18 * 3);
-    CHECK(rows[0] == std::vector<std::string>{"case", "theta_i_deg", "phi_i_deg", "mu_i",
-                                              "channel", "wavelength_nm", "l1", "l1_stderr",
-                                              "l2plus", "l2plus_stderr", "linf", "linf_stderr"});
+    CHECK(rows[0] == std::vector<std::string>{"case", "theta_i_deg", "phi_i_deg", "mu_i", "channel",
+                                              "wavelength_nm", "l1", "l1_stderr", "l2plus",
+                                              "l2plus_stderr", "linf", "linf_stderr"});
     const ResultCase c = read_result_case(input, "");
-    const auto linf = c.read("linf_albedo"), l1 = c.read("l1_albedo"), e = c.read("linf_albedo_stderr");
+    const auto linf = c.read("linf_albedo"), l1 = c.read("l1_albedo"),
+               e = c.read("linf_albedo_stderr");
     for (size_t r = 1; r < rows.size(); ++r) {
         CHECK(std::stod(rows[r][6]) == l1[r - 1]);
         CHECK(std::stod(rows[r][10]) == linf[r - 1]);
@@ -389,7 +401,8 @@ TEST_CASE("export albedo: E(theta_i) per order with errors, and E_avg") {
     }
     // E_avg of channel 1 recomputed: 2 integral E mu dmu, trapezoid, E constant beyond the sweep.
     std::vector<std::pair<double, double>> mu_e{{1.0, linf[1]}};
-    for (int t = 0; t < 18; ++t) mu_e.emplace_back(std::cos(radians(5.0 * t)), linf[size_t(t) * 3 + 1]);
+    for (int t = 0; t < 18; ++t)
+        mu_e.emplace_back(std::cos(radians(5.0 * t)), linf[size_t(t) * 3 + 1]);
     mu_e.emplace_back(0.0, linf[17 * 3 + 1]);
     std::sort(mu_e.begin(), mu_e.end());
     double avg = 0;
@@ -448,30 +461,33 @@ TEST_CASE("export refuses what a format cannot hold, with a reason and nothing w
         CHECK_FALSE(fs::exists(dir / "out.file"));
         CHECK(files_in(dir) == 0); // no temporary file either
     };
-    const std::string aniso = fixture(
-        "aniso", sweep_config("{ type = \"beckmann\", alpha_x = 0.2, alpha_y = 0.5 }",
-                              "{ type = \"mirror\" }", 800, 65536, 128, "[0, 90, 180, 270]", 10, 80));
+    const std::string aniso =
+        fixture("aniso", sweep_config("{ type = \"beckmann\", alpha_x = 0.2, alpha_y = 0.5 }",
+                                      "{ type = \"mirror\" }", 800, 65536, 128, "[0, 90, 180, 270]",
+                                      10, 80));
     refused(aniso, "--format merl", "isotropic BRDFs only");
     const std::string gold = gold_table();
     refused(gold, "--format rgl --orders t", "reflection only");
     refused(gold, "--format merl --orders t", "reflection only");
-    const std::string sparse = fixture(
-        "sparse", sweep_config("{ type = \"beckmann\", alpha = 0.5 }", "{ type = \"mirror\" }", 200,
-                               4096, 32, "0", 30, 60));
+    const std::string sparse =
+        fixture("sparse", sweep_config("{ type = \"beckmann\", alpha = 0.5 }",
+                                       "{ type = \"mirror\" }", 200, 4096, 32, "0", 30, 60));
     refused(sparse, "--format rgl", "too sparse");
     refused(sparse, "--format merl", "too sparse");
     const std::string partial = fixture(
         "partial_turn", sweep_config("{ type = \"beckmann\", alpha_x = 0.2, alpha_y = 0.5 }",
                                      "{ type = \"mirror\" }", 200, 4096, 32, "[0, 45]", 10, 80));
     refused(partial, "--format rgl", "full turn");
-    const std::string glass = fixture(
-        "glass", sweep_config("{ type = \"beckmann\", alpha = 0.3 }",
-                              "{ type = \"dielectric\", eta = 1.5 }", 200, 16384, 32, "0", 45, 45));
+    const std::string glass = fixture("glass", sweep_config("{ type = \"beckmann\", alpha = 0.3 }",
+                                                            "{ type = \"dielectric\", eta = 1.5 }",
+                                                            200, 16384, 32, "0", 45, 45));
     refused(glass, "--format rgl --orders t", "reflection only");
     refused(sparse, "--format astm --orders t", "transmits nothing");
-    const std::string model_only = fixture(
-        "model_only", sweep_config("{ type = \"beckmann\", alpha = 0.5 }", "{ type = \"mirror\" }",
-                                   200, 4096, 32, "0", 5, 85), "model");
+    const std::string model_only =
+        fixture("model_only",
+                sweep_config("{ type = \"beckmann\", alpha = 0.5 }", "{ type = \"mirror\" }", 200,
+                             4096, 32, "0", 5, 85),
+                "model");
     for (const char* f : {"rgl", "merl", "astm", "albedo"})
         refused(model_only, std::string("--format ") + f, "models only");
     // A dielectric's transmission goes to ASTM as a BTDF.

@@ -95,15 +95,16 @@ void write_albedo(const ResultCase& first, const ExportOptions& o, std::ostream&
             for (size_t pj = 0; pj < np; ++pj)
                 for (size_t ch = 0; ch < C; ++ch) {
                     const size_t at = (ti * np + pj) * C + ch;
-                    std::string row = (o.sweep.empty() ? "" : sweep_values[ci] + ",") + c.name +
-                                      "," + shortest(c.theta_i_deg[ti]) + "," +
-                                      shortest(c.phi_i_deg[pj]) + "," +
-                                      shortest(std::cos(radians(c.theta_i_deg[ti]))) + "," +
-                                      std::to_string(ch) + "," +
-                                      (c.wavelength_nm.empty() ? "" : shortest(c.wavelength_nm[ch]));
+                    std::string row =
+                        (o.sweep.empty() ? "" : sweep_values[ci] + ",") + c.name + "," +
+                        shortest(c.theta_i_deg[ti]) + "," + shortest(c.phi_i_deg[pj]) + "," +
+                        shortest(std::cos(radians(c.theta_i_deg[ti]))) + "," + std::to_string(ch) +
+                        "," + (c.wavelength_nm.empty() ? "" : shortest(c.wavelength_nm[ch]));
                     for (int k = 0; k < (any_transmits ? 4 : 3); ++k) {
-                        if (values[k].empty()) row += ",nan,nan";
-                        else row += "," + shortest(values[k][at]) + "," + shortest(errors[k][at]);
+                        if (values[k].empty())
+                            row += ",nan,nan";
+                        else
+                            row += "," + shortest(values[k][at]) + "," + shortest(errors[k][at]);
                     }
                     rows.push_back(std::move(row));
                 }

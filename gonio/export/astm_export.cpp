@@ -34,7 +34,8 @@ void write_astm(const ResultCase& c, const ExportOptions& o, std::ostream& out,
         << (btdf ? ", theta_s from the lower pole" : "") << ")\n"
         << "NUM_POINTS " << nt * np * size_t(d.cells) << "\n"
         << "VARS theta_i,phi_i,theta_s,phi_s";
-    if (C == 1 && c.wavelength_nm.empty()) out << (btdf ? ",BTDF" : ",BRDF");
+    if (C == 1 && c.wavelength_nm.empty())
+        out << (btdf ? ",BTDF" : ",BRDF");
     else
         for (size_t ch = 0; ch < C; ++ch) out << "," << shortest(c.wavelength_nm[ch]) << "nm";
     out << "\n";

@@ -28,7 +28,8 @@ long long AtomicOutput::commit() {
     out_.close();
     std::error_code ec;
     std::filesystem::rename(tmp_, path_, ec);
-    if (ec) throw std::runtime_error("cannot rename " + tmp_ + " to " + path_ + ": " + ec.message());
+    if (ec)
+        throw std::runtime_error("cannot rename " + tmp_ + " to " + path_ + ": " + ec.message());
     committed_ = true;
     return static_cast<long long>(std::filesystem::file_size(path_));
 }

@@ -31,9 +31,12 @@ void require_hemisphere_sweep(const BsdfTable& t, const std::string& format) {
     double widest = 0;
     for (size_t k = 1; k < theta.size(); ++k) widest = std::max(widest, theta[k] - theta[k - 1]);
     std::string why;
-    if (theta.front() > 1) why = "it starts at theta_i = " + std::to_string(theta.front());
-    else if (theta.back() < 80) why = "it ends at theta_i = " + std::to_string(theta.back());
-    else if (widest > 10) why = "it has a gap of " + std::to_string(widest) + " degrees";
+    if (theta.front() > 1)
+        why = "it starts at theta_i = " + std::to_string(theta.front());
+    else if (theta.back() < 80)
+        why = "it ends at theta_i = " + std::to_string(theta.back());
+    else if (widest > 10)
+        why = "it has a gap of " + std::to_string(widest) + " degrees";
     if (!why.empty())
         throw ExportRefused("the sweep is too sparse for " + format + " (" + why +
                             "): it needs theta_i from 0 to at least 80 degrees in steps of at "
@@ -64,16 +67,21 @@ ExportReport export_result(const ExportOptions& o) {
     if (!o.sweep.empty() && o.format != "albedo")
         throw ExportRefused("--sweep applies to the albedo format only");
     // With --sweep the albedo table reads every case; the first one stands for the file here.
-    const ResultCase c = read_result_case(o.input, o.sweep.empty() ? o.case_name : [&] {
-        return o.case_name.empty() ? read_result_case_names(o.input).front() : o.case_name;
-    }());
+    const ResultCase c = read_result_case(
+        o.input, o.sweep.empty() ? o.case_name : [&] {
+            return o.case_name.empty() ? read_result_case_names(o.input).front() : o.case_name;
+        }());
     ExportReport report;
     report.output = o.output;
     AtomicOutput out(o.output, o.overwrite, o.format == "rgl" || o.format == "merl");
-    if (o.format == "rgl") write_rgl(c, o, out.stream(), report);
-    else if (o.format == "merl") write_merl(c, o, out.stream(), report);
-    else if (o.format == "astm") write_astm(c, o, out.stream(), report);
-    else write_albedo(c, o, out.stream(), report);
+    if (o.format == "rgl")
+        write_rgl(c, o, out.stream(), report);
+    else if (o.format == "merl")
+        write_merl(c, o, out.stream(), report);
+    else if (o.format == "astm")
+        write_astm(c, o, out.stream(), report);
+    else
+        write_albedo(c, o, out.stream(), report);
     report.bytes = out.commit();
     report.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

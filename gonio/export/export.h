@@ -18,10 +18,10 @@ struct ExportRefused : std::runtime_error {
 };
 
 struct ExportOptions {
-    std::string input;     // the result file
-    std::string format;    // rgl | merl | astm | albedo
+    std::string input;  // the result file
+    std::string format; // rgl | merl | astm | albedo
     std::string output;
-    std::string case_name; // empty: the file's only case
+    std::string case_name;       // empty: the file's only case
     std::string orders = "linf"; // l1 | l2plus | linf (rgl, merl, astm)
     bool rgb = false;            // rgl: an `rgb` field instead of `spectra`
     std::string sweep;           // albedo: a config key that varies across the file's cases

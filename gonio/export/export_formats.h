@@ -11,7 +11,8 @@ namespace gonio {
 
 // Each writes the format to `out` and adds what the user should know to `report.notes`; throws
 // ExportRefused with the one-line reason when the case cannot be represented.
-void write_rgl(const ResultCase& c, const ExportOptions& o, std::ostream& out, ExportReport& report);
+void write_rgl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
+               ExportReport& report);
 void write_merl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
                 ExportReport& report);
 void write_astm(const ResultCase& c, const ExportOptions& o, std::ostream& out,

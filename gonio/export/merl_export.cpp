@@ -50,8 +50,8 @@ void write_merl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
     const int C = c.channels;
     Matrix3xN to_rgb;
     if (C > 1)
-        to_rgb = spectrum_to_linear_srgb_matrix(load_colour_tables(data_directory()),
-                                                c.wavelength_nm);
+        to_rgb =
+            spectrum_to_linear_srgb_matrix(load_colour_tables(data_directory()), c.wavelength_nm);
     const size_t n = size_t(kThetaH) * kThetaD * kPhiD;
     std::vector<double> data(3 * n, kInvalid);
     std::vector<double> f(static_cast<size_t>(C));
@@ -81,8 +81,8 @@ void write_merl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
                     continue;
                 }
                 table.eval(a, b, f.data());
-                std::array<double, 3> rgb =
-                    C == 1 ? std::array<double, 3>{f[0], f[0], f[0]} : map_channels(to_rgb, f.data());
+                std::array<double, 3> rgb = C == 1 ? std::array<double, 3>{f[0], f[0], f[0]}
+                                                   : map_channels(to_rgb, f.data());
                 for (int ch = 0; ch < 3; ++ch) {
                     if (rgb[ch] < 0) ++clipped, rgb[ch] = 0;
                     data[ch * n + at] = rgb[ch] / kScale[ch];
@@ -97,7 +97,8 @@ void write_merl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
                            std::to_string(unreachable) +
                            " beyond the swept theta_i written as -1 (not measured)");
     if (C > 1) report.notes.push_back("spectral channels converted to linear sRGB (CIE 1931, D65)");
-    if (clipped) report.notes.push_back(std::to_string(clipped) + " out-of-gamut values clipped to 0");
+    if (clipped)
+        report.notes.push_back(std::to_string(clipped) + " out-of-gamut values clipped to 0");
 }
 
 } // namespace gonio

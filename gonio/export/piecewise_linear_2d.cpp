@@ -48,8 +48,8 @@ double PiecewiseLinear2D::eval(Point p) const {
     double fx, fy;
     locate(p[0], w_, x, fx);
     locate(p[1], h_, y, fy);
-    return scale_ * lerp(lerp(at(x, y), at(x + 1, y), fx), lerp(at(x, y + 1), at(x + 1, y + 1), fx),
-                         fy);
+    return scale_ *
+           lerp(lerp(at(x, y), at(x + 1, y), fx), lerp(at(x, y + 1), at(x + 1, y + 1), fx), fy);
 }
 
 PiecewiseLinear2D::Point PiecewiseLinear2D::sample(Point u, double* pdf) const {
@@ -58,14 +58,15 @@ PiecewiseLinear2D::Point PiecewiseLinear2D::sample(Point u, double* pdf) const {
     // Rows: the marginal's patch, then the linear density between the two rows' integrals.
     double target = std::clamp(u[1], 0.0, 1.0) * integral_;
     int y = int(std::upper_bound(marginal_cdf_.begin(), marginal_cdf_.end(), target) -
-                marginal_cdf_.begin()) - 1;
+                marginal_cdf_.begin()) -
+            1;
     y = std::clamp(y, 0, h_ - 2);
     const double r0 = row(y), r1 = row(y + 1);
     const double patch_y = 0.5 * dy * (r0 + r1);
     const double ty =
-        patch_y > 0 ? sample_linear(std::clamp((target - marginal_cdf_[y]) / patch_y, 0.0, 1.0),
-                                    r0, r1)
-                    : 0.0;
+        patch_y > 0
+            ? sample_linear(std::clamp((target - marginal_cdf_[y]) / patch_y, 0.0, 1.0), r0, r1)
+            : 0.0;
     // Columns: the conditional at that height, lerped between the two rows.
     auto ccdf = [&](int x) {
         return lerp(conditional_cdf_[size_t(y) * w_ + x], conditional_cdf_[size_t(y + 1) * w_ + x],
@@ -78,7 +79,8 @@ PiecewiseLinear2D::Point PiecewiseLinear2D::sample(Point u, double* pdf) const {
         (ccdf(mid) <= target ? lo : hi) = mid;
     }
     const int x = lo;
-    const double c0 = lerp(at(x, y), at(x, y + 1), ty), c1 = lerp(at(x + 1, y), at(x + 1, y + 1), ty);
+    const double c0 = lerp(at(x, y), at(x, y + 1), ty),
+                 c1 = lerp(at(x + 1, y), at(x + 1, y + 1), ty);
     const double patch_x = 0.5 * dx * (c0 + c1);
     const double tx =
         patch_x > 0 ? sample_linear(std::clamp((target - ccdf(x)) / patch_x, 0.0, 1.0), c0, c1)
@@ -97,7 +99,8 @@ PiecewiseLinear2D::Point PiecewiseLinear2D::invert(Point p, double* pdf) const {
     locate(p[1], h_, y, ty);
     const double r0 = row(y), r1 = row(y + 1);
     const double uy = (marginal_cdf_[y] + dy * (r0 * ty + 0.5 * (r1 - r0) * ty * ty)) / integral_;
-    const double c0 = lerp(at(x, y), at(x, y + 1), ty), c1 = lerp(at(x + 1, y), at(x + 1, y + 1), ty);
+    const double c0 = lerp(at(x, y), at(x, y + 1), ty),
+                 c1 = lerp(at(x + 1, y), at(x + 1, y + 1), ty);
     const double before =
         lerp(conditional_cdf_[size_t(y) * w_ + x], conditional_cdf_[size_t(y + 1) * w_ + x], ty);
     const double row_total = lerp(r0, r1, ty);

@@ -2,7 +2,8 @@
 // Efficient Material Acquisition and Rendering", ACM TOG 37(6)), as Mitsuba 3's and pbrt-v4's
 // `measured` BSDFs read it. With w_p the parameter direction (the incidence of the table) and
 // u_m = (theta2u(theta_m), phi2u(phi_m)) of the half vector m, a reader evaluates
-//   f cos theta_q = spectra(vndf^-1(u_m)) ndf(u_m) / (4 sigma(w_p))      [D&J 2018 Eq. 9 and Sec. 5]
+//   f cos theta_q = spectra(vndf^-1(u_m)) ndf(u_m) / (4 sigma(w_p))      [D&J 2018 Eq. 9 and Sec.
+//   5]
 // so the file stores spectra = f cos theta_q 4 sigma / D at the points the VNDF warp of each
 // incidence reaches from a regular grid of its unit square, where f is the tabulated BSDF.
 //
@@ -28,21 +29,31 @@
 namespace gonio {
 
 namespace {
-constexpr int kNdfWidth = 128;   // theta2u vertices of ndf, sigma and vndf
-constexpr int kPhiHeight = 128;  // phi vertices of vndf (and of ndf when anisotropic)
-constexpr int kSigmaAniso = 64;  // sigma's grid of an anisotropic file
-constexpr int kSampleRes = 64;   // luminance and spectra vertices per side (published: 32)
-constexpr double kFloor = 0.02;  // share of the cosine-weighted floor in the file's D
+constexpr int kNdfWidth = 128;  // theta2u vertices of ndf, sigma and vndf
+constexpr int kPhiHeight = 128; // phi vertices of vndf (and of ndf when anisotropic)
+constexpr int kSigmaAniso = 64; // sigma's grid of an anisotropic file
+constexpr int kSampleRes = 64;  // luminance and spectra vertices per side (published: 32)
+constexpr double kFloor = 0.02; // share of the cosine-weighted floor in the file's D
 
-double theta2u(double t) { return std::sqrt(t * 2 / kPi); }
-double phi2u(double p) { return (p + kPi) / kTwoPi; }
-double u2theta(double u) { return u * u * kPi / 2; }
-double u2phi(double u) { return (2 * u - 1) * kPi; }
+double theta2u(double t) {
+    return std::sqrt(t * 2 / kPi);
+}
+double phi2u(double p) {
+    return (p + kPi) / kTwoPi;
+}
+double u2theta(double u) {
+    return u * u * kPi / 2;
+}
+double u2phi(double u) {
+    return (2 * u - 1) * kPi;
+}
 Vec3 direction_of(double u_x, double u_y, double phi_offset) {
     return spherical_direction(u2theta(u_x), u2phi(u_y) + phi_offset);
 }
 // d omega_m = 2 pi^2 u_x sin theta_m du_x du_y.
-double jacobian(double u_x) { return 2 * kPi * kPi * u_x * std::sin(u2theta(u_x)); }
+double jacobian(double u_x) {
+    return 2 * kPi * kPi * u_x * std::sin(u2theta(u_x));
+}
 
 // The case's D resolved to an angular scale `beta`: itself when its narrowest feature is wider
 // than 2 beta, else a Gaussian kernel estimate from its own samples (all near its peak).
@@ -52,7 +63,8 @@ class ResolvedNdf {
         if (ndf.narrowest_feature() >= 2 * beta) return;
         const int n = 64;
         for (int i = 0; i < n; ++i)
-            for (int j = 0; j < n; ++j) samples_.push_back(ndf.sample_m((i + 0.5) / n, (j + 0.5) / n));
+            for (int j = 0; j < n; ++j)
+                samples_.push_back(ndf.sample_m((i + 0.5) / n, (j + 0.5) / n));
     }
     bool smoothed() const { return !samples_.empty(); }
     double D(const Vec3& m) const {
@@ -146,7 +158,8 @@ void write_rgl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
     }
     const PiecewiseLinear2D ndf_eval(ndf, kNdfWidth, ndf_h, false);
     std::vector<double> d_at_quad(quad.size());
-    for (size_t k = 0; k < quad.size(); ++k) d_at_quad[k] = ndf_eval.eval({quad[k].u_x, quad[k].u_y});
+    for (size_t k = 0; k < quad.size(); ++k)
+        d_at_quad[k] = ndf_eval.eval({quad[k].u_x, quad[k].u_y});
 
     // sigma(w) = integral D(m) <w.m> d omega_m, on its own grid of w.
     const int sig_w = iso ? kNdfWidth : kSigmaAniso, sig_h = iso ? 2 : kSigmaAniso;
@@ -167,15 +180,16 @@ void write_rgl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
     const int out_channels = o.rgb ? 3 : std::max(C, 2);
     Matrix3xN to_rgb;
     if (o.rgb && C > 1)
-        to_rgb = spectrum_to_linear_srgb_matrix(load_colour_tables(data_directory()),
-                                                c.wavelength_nm);
+        to_rgb =
+            spectrum_to_linear_srgb_matrix(load_colour_tables(data_directory()), c.wavelength_nm);
     // Spectral channels in increasing wavelength (the readers search them).
     std::vector<int> channel_order(static_cast<size_t>(C));
     std::iota(channel_order.begin(), channel_order.end(), 0);
     if (C > 1)
         std::sort(channel_order.begin(), channel_order.end(),
                   [&](int a, int b) { return c.wavelength_nm[a] < c.wavelength_nm[b]; });
-    const size_t slice_v = size_t(kPhiHeight) * kNdfWidth, slice_s = size_t(kSampleRes) * kSampleRes;
+    const size_t slice_v = size_t(kPhiHeight) * kNdfWidth,
+                 slice_s = size_t(kSampleRes) * kSampleRes;
     std::vector<double> vndf(np * nt * slice_v), luminance(np * nt * slice_s),
         values(np * nt * size_t(out_channels) * slice_s);
     int negative_rgb = 0;
@@ -192,8 +206,8 @@ void write_rgl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
                     v[size_t(y) * kNdfWidth + x] =
                         jacobian(ux) * std::max(0.0, dot(wp, m)) * ndf_eval.eval({ux, uy});
                 }
-            const PiecewiseLinear2D warp(std::vector<double>(v, v + slice_v), kNdfWidth,
-                                         kPhiHeight, true);
+            const PiecewiseLinear2D warp(std::vector<double>(v, v + slice_v), kNdfWidth, kPhiHeight,
+                                         true);
             const double sig = sigma_eval.eval({theta2u(theta_p[j]), phi2u(phi_p[k])});
             double* lum = luminance.data() + (k * nt + j) * slice_s;
             double* val = values.data() + (k * nt + j) * size_t(out_channels) * slice_s;
@@ -220,14 +234,17 @@ void write_rgl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
                         } else if (C == 1) {
                             stored[0] = stored[1] = f[0] * ratio;
                         } else {
-                            for (int ch = 0; ch < C; ++ch) stored[ch] = f[channel_order[ch]] * ratio;
+                            for (int ch = 0; ch < C; ++ch)
+                                stored[ch] = f[channel_order[ch]] * ratio;
                         }
                         for (int ch = 0; ch < out_channels; ++ch) {
                             val[size_t(ch) * slice_s + at] = stored[ch];
                             if (!o.rgb && C > 1) l += lum_w[channel_order[ch]] * stored[ch];
                         }
-                        if (o.rgb) l = lum_w[0] * stored[0] + lum_w[1] * stored[1] + lum_w[2] * stored[2];
-                        else if (C == 1) l = stored[0];
+                        if (o.rgb)
+                            l = lum_w[0] * stored[0] + lum_w[1] * stored[1] + lum_w[2] * stored[2];
+                        else if (C == 1)
+                            l = stored[0];
                     }
                     lum[at] = l;
                 }
@@ -242,10 +259,9 @@ void write_rgl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
     TensorFileWriter w;
     const std::string description =
         "gonio " + std::string(kVersion) + " (git " + kGitHash + "): case " + c.name + " of " +
-        c.file + ", order " + name_of(order) + ", " + std::to_string(c.cells) +
-        " sensor cells; " + (iso ? "isotropic" : "anisotropic") +
-        "; ndf: the case's NDF" + (resolved.smoothed() ? " smoothed to the sensor's cells" : "") +
-        " with a 2% cosine floor";
+        c.file + ", order " + name_of(order) + ", " + std::to_string(c.cells) + " sensor cells; " +
+        (iso ? "isotropic" : "anisotropic") + "; ndf: the case's NDF" +
+        (resolved.smoothed() ? " smoothed to the sensor's cells" : "") + " with a 2% cosine floor";
     w.add_u8("description", {description.size()},
              std::vector<std::uint8_t>(description.begin(), description.end()));
     w.add_u8("jacobian", {1}, {1});
@@ -259,7 +275,8 @@ void write_rgl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
         w.add_f32("rgb", {np, nt, 3, kSampleRes, kSampleRes}, values);
     } else {
         std::vector<double> wl;
-        if (C == 1) wl = {360, 830}; // achromatic: one value at every wavelength
+        if (C == 1)
+            wl = {360, 830}; // achromatic: one value at every wavelength
         else
             for (int ch : channel_order) wl.push_back(c.wavelength_nm[ch]);
         w.add_f32("wavelengths", {wl.size()}, wl);

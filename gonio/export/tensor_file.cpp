@@ -13,7 +13,8 @@ bool little_endian() {
     std::memcpy(&b, &one, 1);
     return b == 1;
 }
-template <class T> void put(std::vector<std::uint8_t>& out, T v) {
+template <class T>
+void put(std::vector<std::uint8_t>& out, T v) {
     std::uint8_t b[sizeof(T)];
     std::memcpy(b, &v, sizeof(T));
     if (!little_endian())

@@ -12,7 +12,7 @@ namespace gonio {
 struct ResultCase {
     std::string file, name;
     CaseConfig config;
-    std::string effective_toml; // the file's config_effective_toml
+    std::string effective_toml;                                // the file's config_effective_toml
     std::string material;                                      // the case's `material` attribute
     std::vector<double> theta_i_deg, phi_i_deg, wavelength_nm; // as stored (sweep order)
     int cells = 0, channels = 1;
