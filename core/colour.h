@@ -25,6 +25,13 @@ Matrix3xN spectrum_to_xyz_matrix(const ColourTables& t, const std::vector<double
 Matrix3xN spectrum_to_linear_srgb_matrix(const ColourTables& t,
                                          const std::vector<double>& wavelengths_nm);
 std::array<double, 3> xyz_to_linear_srgb(const std::array<double, 3>& xyz);
+std::array<double, 3> linear_srgb_to_xyz(const std::array<double, 3>& rgb);
+// CIE 1976 L*a*b* of XYZ against the D65 white (Y = 1) [CIE 15:2004 section 8.2.1].
+std::array<double, 3> xyz_to_lab(const std::array<double, 3>& xyz);
+// The sRGB transfer function (IEC 61966-2-1): linear [0, 1] to encoded [0, 1].
+double srgb_encode(double linear);
+// CIEDE2000 colour difference with kL = kC = kH = 1 [Sharma, Wu & Dalal 2005, Eqs. 1-21].
+double ciede2000(const std::array<double, 3>& lab1, const std::array<double, 3>& lab2);
 std::array<double, 3> map_channels(const Matrix3xN& m, const double* channels);
 
 } // namespace gonio

@@ -113,3 +113,32 @@ TEST_CASE("colour: D65 white, a white reflector in sRGB, and monochromatic lines
     CHECK(red[0] > red[1]);
     CHECK(red[1] > red[2]);
 }
+
+TEST_CASE("CIEDE2000: the 34 test pairs of Sharma, Wu and Dalal (2005) to 1e-4") {
+    std::ifstream in(std::string(GONIO_SOURCE_DIR) + "/tests/data/ciede2000_sharma2005.csv");
+    std::string line;
+    int pairs = 0;
+    bool header = true;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        if (header) {
+            header = false;
+            continue;
+        }
+        std::array<double, 7> v{};
+        std::sscanf(line.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &v[1], &v[2], &v[3], &v[4],
+                    &v[5], &v[6]);
+        const std::array<double, 3> a{v[0], v[1], v[2]}, b{v[3], v[4], v[5]};
+        INFO("pair " << pairs + 1);
+        CHECK(std::abs(ciede2000(a, b) - v[6]) <= 1e-4);
+        CHECK(std::abs(ciede2000(b, a) - v[6]) <= 1e-4); // symmetric
+        ++pairs;
+    }
+    CHECK(pairs == 34);
+    CHECK(ciede2000({52, 10, -30}, {52, 10, -30}) == 0);
+    // sRGB white is L* = 100, a* = b* = 0.
+    const auto white = xyz_to_lab(linear_srgb_to_xyz({1, 1, 1}));
+    CHECK(white[0] == doctest::Approx(100).epsilon(1e-3));
+    CHECK(std::abs(white[1]) < 0.05);
+    CHECK(std::abs(white[2]) < 0.05);
+}
