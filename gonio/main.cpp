@@ -109,6 +109,35 @@ int main(int argc, char** argv) {
     export_cmd->add_flag("--overwrite", exp.overwrite, "Replace an existing output file");
     export_cmd->add_flag("-q,--quiet", exp.quiet, "Print nothing on success");
 
+    gonio::RenderOptions rnd;
+    std::string render_size = "400x300", render_light;
+    CLI::App* render_cmd = app.add_subcommand(
+        "render", "Render a simulated case's tabulated BSDF on an object (PNG and EXR)");
+    render_cmd->add_option("file", rnd.input, "HDF5 result file of gonio run")->required();
+    render_cmd->add_option("-o,--output", rnd.output, "Output .png (an .exr beside it)")
+        ->required();
+    render_cmd->add_option("--case", rnd.case_name, "The case (default: the only one)");
+    render_cmd
+        ->add_option("--compare", rnd.compare,
+                     "l1: also without multiple scattering; model: simulated L1 against "
+                     "Model L1; both write the Delta E00 image")
+        ->check(CLI::IsMember({"l1", "model"}));
+    render_cmd->add_option("--spp", rnd.settings.spp, "Samples per pixel (default 64)")
+        ->check(CLI::Range(1, 1 << 20));
+    render_cmd->add_option("--size", render_size, "WxH (default 400x300)");
+    render_cmd->add_option("--object", rnd.object, "sphere (default) or torus")
+        ->check(CLI::IsMember({"sphere", "torus"}));
+    render_cmd->add_option("--env", rnd.env, "uniform, sky (default) or a lat-long FILE.exr");
+    render_cmd->add_option("--light", render_light,
+                           "theta,phi in degrees: a directional light from there");
+    render_cmd->add_option("--depth", rnd.settings.max_depth, "Path vertices (default 5)")
+        ->check(CLI::Range(1, 64));
+    render_cmd->add_option("--seed", rnd.settings.seed, "Random seed (default 1)");
+    render_cmd->add_flag("--overwrite", rnd.overwrite, "Replace existing images");
+    render_cmd->add_flag("-q,--quiet", rnd.quiet, "No progress");
+    render_cmd->add_option("--threads", rnd.threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(0, 1024));
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -124,6 +153,31 @@ int main(int argc, char** argv) {
         if (*info_cmd) return gonio::run_info_command(info_path, info_json);
         if (*keys_cmd) return gonio::run_keys_command(keys_markdown);
         if (*export_cmd) return gonio::run_export_command(exp);
+        if (*render_cmd) {
+            int w = 0, h = 0;
+            char x = 0, rest = 0;
+            if (std::sscanf(render_size.c_str(), "%d%c%d%c", &w, &x, &h, &rest) != 3 || x != 'x' ||
+                w < 8 || h < 8 || w > 8192 || h > 8192)
+                throw gonio::RenderArgumentError("--size " + render_size +
+                                                 ": expected WxH, each in [8, 8192]");
+            rnd.settings.width = w;
+            rnd.settings.height = h;
+            if (!render_light.empty()) {
+                double theta = 0, phi = 0;
+                if (std::sscanf(render_light.c_str(), "%lf,%lf%c", &theta, &phi, &rest) != 2 ||
+                    theta < 0 || theta >= 90)
+                    throw gonio::RenderArgumentError(
+                        "--light " + render_light +
+                        ": expected theta,phi in degrees, theta in [0, 90)");
+                rnd.settings.light = true;
+                rnd.settings.light_direction =
+                    gonio::spherical_direction(gonio::radians(theta), gonio::radians(phi));
+            }
+            return gonio::run_render_command(rnd);
+        }
+    } catch (const gonio::RenderArgumentError& e) {
+        std::fprintf(stderr, "gonio render: error: %s\n", e.what());
+        return 2;
     } catch (const gonio::ConfigError& e) {
         std::fprintf(stderr, "gonio: error: %s\n", e.what());
         return 2;

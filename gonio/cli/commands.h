@@ -1,5 +1,8 @@
 #pragma once
 // The gonio subcommands; each returns the process exit code.
+#include "gonio/render/renderer.h"
+
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -63,6 +66,22 @@ struct ExportOptions;
 // `gonio export FILE --format F -o OUT`: the simulated BSDF in a format other tools read
 // (gonio/export/export.h); exit 3 when the format cannot hold the case.
 int run_export_command(const ExportOptions& options);
+
+// `gonio render FILE -o OUT.png`: the case's tabulated BSDF on an object (gonio/render).
+struct RenderOptions {
+    std::string input, output, case_name;
+    std::string compare; // "", "l1" or "model"
+    std::string object = "sphere";
+    std::string env = "sky"; // uniform, sky or an EXR path
+    RenderSettings settings;
+    bool overwrite = false, quiet = false;
+    int threads = 0;
+};
+// A bad argument of `gonio render` (exit 2, like a config error).
+struct RenderArgumentError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+int run_render_command(const RenderOptions& options);
 
 // `gonio info FILE [--json]`.
 int run_info_command(const std::string& path, bool as_json);

@@ -65,6 +65,20 @@ TableData table_data(const ResultCase& c, TableOrder order) {
     return d;
 }
 
+TableData model_table_data(const ResultCase& c, const std::string& model) {
+    const std::string name = "model_" + model;
+    if (!c.has(name))
+        throw std::runtime_error(c.file + ": case " + c.name + " has no model " + model);
+    TableData d;
+    d.theta_i_deg = c.theta_i_deg;
+    d.phi_i_deg = c.phi_i_deg;
+    d.cells = c.cells;
+    d.channels = c.channels;
+    d.f = c.read(name);
+    d.isotropic = c.isotropic;
+    return d;
+}
+
 namespace {
 constexpr int kMaxIsotropicSlices = 8; // azimuths an isotropic query averages
 constexpr int kMaxBlend = 2 * kMaxIsotropicSlices;

@@ -46,6 +46,8 @@ struct TableData {
 // The order's data of a simulated case; throws std::runtime_error with the reason (a model-only
 // file, transmission of a material that does not transmit).
 TableData table_data(const ResultCase& c, TableOrder order);
+// A model's cell averages (`model_<name>`, e.g. Model L1) as a table on the same sweep.
+TableData model_table_data(const ResultCase& c, const std::string& model);
 
 class BsdfTable {
   public:
