@@ -52,8 +52,10 @@ int run_render_command(const RenderOptions& o) {
         const TableBsdf bsdf(std::move(table));
         Rendered r{label, render(scene, env, bsdf, floor, s)};
         if (!o.quiet)
-            std::printf("%s: %dx%d, %d spp, %.1f s\n", label.c_str(), s.width, s.height, s.spp,
-                        r.result.seconds);
+            std::printf("%s: %dx%d, %d spp, %.1f s, noise %.1f %% per pixel (rms over the "
+                        "object)\n",
+                        label.c_str(), s.width, s.height, s.spp, r.result.seconds,
+                        100 * r.result.relative_noise);
         return r;
     };
     auto save = [&](const Rendered& r, const std::string& suffix) {

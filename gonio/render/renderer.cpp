@@ -98,6 +98,7 @@ RenderResult render(const RenderScene& scene, const Environment& env, const Surf
         return L;
     };
 
+    std::vector<double> noise(size_t(s.width) * s.height, 0.0);
     Progress progress(s.height, s.quiet);
     const int band = 8;
     for (int y0 = 0; y0 < s.height; y0 += band) {
@@ -108,6 +109,7 @@ RenderResult render(const RenderScene& scene, const Environment& env, const Surf
                                   const int x = pixel % s.width, y = pixel / s.width;
                                   Rng rng{s.seed, std::uint64_t(pixel)};
                                   Rgb sum{0, 0, 0};
+                                  double halves[2] = {0, 0};
                                   int object_hits = 0;
                                   for (int k = 0; k < s.spp; ++k) {
                                       const double px = (x + rng.uniform()) / s.width * 2 - 1;
@@ -119,15 +121,28 @@ RenderResult render(const RenderScene& scene, const Environment& env, const Surf
                                       const Rgb L = radiance(eye, d, rng, hit_object);
                                       object_hits += hit_object;
                                       for (int c = 0; c < 3; ++c) sum[c] += L[c];
+                                      halves[k & 1] += 0.2126 * L[0] + 0.7152 * L[1] + 0.0722 * L[2];
                                   }
                                   float* out_px = out.image.at(x, y);
                                   for (int c = 0; c < 3; ++c) out_px[c] = float(sum[c] / s.spp);
                                   out.object[size_t(pixel)] = object_hits * 2 > s.spp;
+                                  const int even = (s.spp + 1) / 2, odd = s.spp / 2;
+                                  noise[size_t(pixel)] =
+                                      odd > 0 ? 0.5 * (halves[0] / even - halves[1] / odd) : 0.0;
                               }
                           });
         progress.update(y1, "rows");
     }
     progress.finish();
+    double se2 = 0, v2 = 0;
+    for (size_t k = 0; k < noise.size(); ++k)
+        if (out.object[k]) {
+            const float* p = out.image.rgb.data() + 3 * k;
+            const double y = 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+            se2 += noise[k] * noise[k];
+            v2 += y * y;
+        }
+    out.relative_noise = v2 > 0 ? std::sqrt(se2 / v2) : 0.0;
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }
