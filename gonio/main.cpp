@@ -1,6 +1,7 @@
 // gonio: a virtual gonioreflectometer for explicit microfacet surfaces. See README.md.
 #include "core/config_error.h"
 #include "gonio/cli/commands.h"
+#include "gonio/distributed/mpi_job.h"
 #include "gonio/export/export.h"
 #include "gonio_version.h"
 
@@ -8,7 +9,17 @@
 #include <cstdio>
 #include <exception>
 
+int gonio_main(int argc, char** argv, const gonio::MpiJob& job);
+
 int main(int argc, char** argv) {
+    // Under mpirun: MPI starts here, and every rank but 0 keeps quiet.
+    const gonio::MpiJob job = gonio::mpi_start(&argc, &argv);
+    const int code = gonio_main(argc, argv, job);
+    gonio::mpi_finish();
+    return code;
+}
+
+int gonio_main(int argc, char** argv, const gonio::MpiJob& job) {
     CLI::App app{"gonio: a virtual gonioreflectometer for microfacet surfaces"};
     app.set_version_flag("--version",
                          std::string(gonio::kVersion) + " (git " + gonio::kGitHash + ")");
@@ -63,6 +74,23 @@ int main(int argc, char** argv) {
     run_cmd->add_option("--cache-dir", run.cache_dir, "Surface cache directory");
     run_cmd->add_option("--threads", run.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(0, 1024));
+    run_cmd->add_option("--shard", run.shard,
+                        "i/N: trace only shard i of N into a part file for gonio merge (default "
+                        "from SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT)");
+    run_cmd->add_flag("--resume", run.resume,
+                      "Continue an interrupted run from OUT.checkpoint");
+
+    std::vector<std::string> merge_parts;
+    std::string merge_output;
+    bool merge_overwrite = false, merge_quiet = false;
+    int merge_threads = 0;
+    CLI::App* merge_cmd =
+        app.add_subcommand("merge", "Put the parts of a sharded gonio run together");
+    merge_cmd->add_option("parts", merge_parts, "Part files of gonio run --shard")->required();
+    merge_cmd->add_option("-o,--output", merge_output, "HDF5 result file")->required();
+    merge_cmd->add_flag("--overwrite", merge_overwrite, "Replace an existing output file");
+    merge_cmd->add_flag("-q,--quiet", merge_quiet, "No table");
+    merge_cmd->add_option("--threads", merge_threads, "Worker threads (default: all cores)");
 
     gonio::NdfOptions ndf;
     CLI::App* ndf_cmd = app.add_subcommand(
@@ -109,6 +137,14 @@ int main(int argc, char** argv) {
     export_cmd->add_flag("--overwrite", exp.overwrite, "Replace an existing output file");
     export_cmd->add_flag("-q,--quiet", exp.quiet, "Print nothing on success");
 
+    std::string cache_action, cache_dir;
+    CLI::App* cache_cmd = app.add_subcommand(
+        "cache", "List or clear the surface cache ($GONIO_CACHE_DIR; $GONIO_CACHE_MAX caps it)");
+    cache_cmd->add_option("action", cache_action, "list or clear")
+        ->required()
+        ->check(CLI::IsMember({"list", "clear"}));
+    cache_cmd->add_option("--cache-dir", cache_dir, "Surface cache directory");
+
     gonio::RenderOptions rnd;
     std::string render_size = "400x300", render_light;
     CLI::App* render_cmd = app.add_subcommand(
@@ -147,12 +183,19 @@ int main(int argc, char** argv) {
     try {
         if (*model_cmd) return gonio::run_model_command(model);
         if (*surface_cmd) return gonio::run_surface_command(surface);
-        if (*run_cmd) return gonio::run_run_command(run);
+        if (*run_cmd) {
+            run.quiet = run.quiet || job.rank != 0;
+            return gonio::run_run_command(run);
+        }
         if (*ndf_cmd) return gonio::run_ndf_command(ndf);
         if (*compare_cmd) return gonio::run_compare_command(compare_path);
         if (*info_cmd) return gonio::run_info_command(info_path, info_json);
         if (*keys_cmd) return gonio::run_keys_command(keys_markdown);
         if (*export_cmd) return gonio::run_export_command(exp);
+        if (*merge_cmd)
+            return gonio::run_merge_command(merge_parts, merge_output, merge_overwrite, merge_quiet,
+                                            merge_threads);
+        if (*cache_cmd) return gonio::run_cache_command(cache_action, cache_dir);
         if (*render_cmd) {
             int w = 0, h = 0;
             char x = 0, rest = 0;

@@ -8,6 +8,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace gonio {
 
@@ -20,6 +21,17 @@ std::string surface_cache_key(const Ndf& ndf, const SurfaceSpec& spec);
 // $HOME/.cache/gonio/surfaces.
 std::string default_cache_directory();
 
+// One cached surface, for `gonio cache list`.
+struct CacheEntry {
+    std::string path, key, identity;
+    long long bytes = 0;
+    double age_seconds = 0; // since it was last used
+};
+
+// A size limit from $GONIO_CACHE_MAX ("500M", "2G", "1e9", bytes); 0 when unset. Throws
+// std::invalid_argument naming the variable for anything else.
+long long cache_size_limit();
+
 class SurfaceCache {
   public:
     // An empty directory disables the cache.
@@ -29,8 +41,18 @@ class SurfaceCache {
     // The cached surface, if present and its stored identity matches (guards against collisions).
     std::optional<HeightField> load(const std::string& key, const std::string& identity,
                                     ExrAttributes* attrs = nullptr) const;
+    // Written under a temporary name and renamed, so that concurrent writers of the same
+    // surface never leave a half-written entry (the last rename wins; both are the same
+    // surface); then, with a size limit, the least recently used entries are evicted.
     void store(const std::string& key, const HeightField& surface,
                const ExrAttributes& attrs) const;
+    // Entries, most recently used first (a load marks an entry used).
+    std::vector<CacheEntry> list() const;
+    // Removes every entry (and stray temporaries); returns how many files went.
+    int clear() const;
+    // Evicts least recently used entries until the cache holds at most `limit` bytes, never
+    // `keep`; returns how many went.
+    int evict(long long limit, const std::string& keep = "") const;
 
   private:
     std::string dir_;

@@ -43,6 +43,8 @@ struct RunOptions {
     std::string cache_dir;
     int threads = 0;
     std::string command_line;
+    std::string shard; // "i/N": trace that share of the work units into a part file
+    bool resume = false; // continue from OUT.checkpoint
 };
 // `gonio run`: trace every case and incidence on the explicit surface; write HDF5.
 int run_run_command(const RunOptions& options);
@@ -82,6 +84,13 @@ struct RenderArgumentError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 int run_render_command(const RenderOptions& options);
+
+// `gonio merge PART... -o OUT`: the parts of a sharded run, checked and put together.
+int run_merge_command(const std::vector<std::string>& parts, const std::string& output,
+                      bool overwrite, bool quiet, int threads);
+
+// `gonio cache list|clear [--cache-dir DIR]`: the shared surface cache.
+int run_cache_command(const std::string& action, const std::string& directory);
 
 // `gonio info FILE [--json]`.
 int run_info_command(const std::string& path, bool as_json);

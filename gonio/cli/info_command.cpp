@@ -44,6 +44,10 @@ void print_json(const ResultSummary& s) {
          {"file_format", "gonio_version", "git_hash", "command_line", "config_path", "created_utc"})
         out[k] = attribute(s.attributes, k);
     out["seed"] = s.seed;
+    json how = json::object(); // how it ran: processes, threads, shard, merged parts
+    for (const char* k : {"mpi_ranks", "threads_per_rank", "shard", "merged_parts"})
+        if (s.attributes.count(k)) how[k] = attribute(s.attributes, k);
+    if (!how.empty()) out["execution"] = how;
     if (!s.timings.empty()) out["timings"] = timings_json(s.timings);
     json cases = json::array();
     for (const CaseSummary& c : s.cases) {
@@ -92,6 +96,13 @@ void print_text(const ResultSummary& s) {
                 attribute(s.attributes, "created_utc").c_str());
     std::printf("  config %s\n  command %s\n", attribute(s.attributes, "config_path").c_str(),
                 attribute(s.attributes, "command_line").c_str());
+    if (s.attributes.count("mpi_ranks"))
+        std::printf("  ran on %s process(es) x %s thread(s)%s\n",
+                    attribute(s.attributes, "mpi_ranks").c_str(),
+                    attribute(s.attributes, "threads_per_rank").c_str(),
+                    s.attributes.count("merged_parts")
+                        ? (", merged from " + attribute(s.attributes, "merged_parts") + " parts").c_str()
+                        : "");
     auto print_timings = [](const char* indent,
                             const std::vector<std::pair<std::string, double>>& timings) {
         if (timings.empty()) return;

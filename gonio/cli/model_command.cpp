@@ -1,6 +1,8 @@
 #include "core/config_error.h"
 #include "gonio/cli/cli_common.h"
 #include "gonio/cli/commands.h"
+#include "gonio/distributed/stop_signal.h"
+#include "gonio/distributed/work_units.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
 #include "gonio/io/result_writer.h"
@@ -25,6 +27,7 @@ int run_model_command(const ModelOptions& options) {
                                    ? std::filesystem::path(options.config).stem().string() + ".h5"
                                    : options.output;
     const auto limit = limit_threads(options.threads);
+    install_stop_handlers();
     ResultWriter writer(output, options.overwrite); // refuses to replace a file before any work
     writer.write_run(cfg, options.command_line);
     t = run.add_since("writing", t);
@@ -41,7 +44,10 @@ int run_model_command(const ModelOptions& options) {
     for (size_t ci = 0; ci < cfg.cases.size(); ++ci) {
         const CaseConfig& c = cfg.cases[ci];
         CaseObserver observer;
-        observer.started = [&](const std::string& label) { progress.update(done, label); };
+        observer.started = [&](const std::string& label) {
+            if (stop_requested()) throw Interrupted(); // between incidences: nothing half-written
+            progress.update(done, label);
+        };
         observer.finished = [&](const IncidenceReport& r) {
             ++done;
             if (options.quiet) return;
@@ -54,7 +60,15 @@ int run_model_command(const ModelOptions& options) {
             }
         };
         settings.case_index = ci;
-        const CaseResult result = evaluate_case_models(c, settings, observer);
+        CaseResult result;
+        try {
+            result = evaluate_case_models(c, settings, observer);
+        } catch (const Interrupted&) {
+            progress.finish();
+            std::fprintf(stderr, "gonio: interrupted; nothing was written (models are recomputed "
+                                 "on the next run)\n");
+            return 130;
+        }
         t = PhaseTimes::Clock::now();
         writer.write_model_case(c, *result.sensor, c.ndf->describe(), result.models);
         PhaseTimes phases = result.phases;

@@ -75,6 +75,13 @@ void ResultWriter::write_run(const Config& cfg, const std::string& command_line)
     h5::write_string_list_attribute(file_, "cases", names);
 }
 
+void ResultWriter::write_execution(int ranks, int threads, int merged_parts) {
+    h5::write_string_attribute(file_, "mpi_ranks", std::to_string(ranks));
+    h5::write_string_attribute(file_, "threads_per_rank", std::to_string(threads));
+    if (merged_parts > 0)
+        h5::write_string_attribute(file_, "merged_parts", std::to_string(merged_parts));
+}
+
 // A case's group with its dimension scales, one per axis, and the names of the coordinate
 // variables along cell and channel; put() writes a named array against them.
 struct ResultWriter::CaseGroup {

@@ -27,6 +27,9 @@ class ResultWriter {
     ResultWriter& operator=(const ResultWriter&) = delete;
 
     void write_run(const Config& cfg, const std::string& command_line);
+    // How the run was executed (root string attributes mpi_ranks, threads_per_rank and, for a
+    // merge, merged_parts): provenance, not data.
+    void write_execution(int ranks, int threads_per_rank, int merged_parts = 0);
     void write_model_case(const CaseConfig& c, const BeckersSensor& sensor,
                           const std::string& ndf_description,
                           const std::vector<ModelResult>& models);

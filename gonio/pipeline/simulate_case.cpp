@@ -5,6 +5,7 @@
 #include "gonio/trace/scene.h"
 
 #include <cstdio>
+#include <stdexcept>
 
 namespace gonio {
 
@@ -26,6 +27,18 @@ HeightField make_surface(const CaseConfig& c, const SurfaceSpec& spec, const Cas
     result.phases.add_since("surface", start);
     if (!result.surface_origin.warning.empty() && o.warn) o.warn(result.surface_origin.warning);
     return surface;
+}
+
+bool owned_here(const UnitPlan* plan, size_t ti, size_t pi) {
+    return !plan || !plan->owned || plan->owned(ti, pi);
+}
+const UnitTraces* done_before(const UnitPlan* plan, size_t ti, size_t pi) {
+    if (!plan || !plan->done) return nullptr;
+    const auto it = plan->done->find({ti, pi});
+    return it == plan->done->end() ? nullptr : &it->second;
+}
+void check_stop(const UnitPlan* plan) {
+    if (plan && plan->stop_requested && plan->stop_requested()) throw Interrupted();
 }
 
 // Each model's evaluation time over the sweep, as its own phase.
@@ -69,12 +82,25 @@ CaseResult simulate_ensemble(const CaseConfig& c, const CaseRunSettings& s, cons
         int passes = 0;
     };
     std::vector<State> states(n);
-    for (State& st : states) {
+    const UnitPlan* plan = s.plan;
+    const bool trace_only = plan && plan->trace_only;
+    std::vector<std::vector<TraceResult>> members(plan && plan->traced ? n : 0);
+    std::string first_surface; // where realisation 0 is, for the file
+    for (size_t i = 0; i < n; ++i) {
+        State& st = states[i];
         st.wanted = first;
         st.per_surface = (std::max(1LL, c.trace.rays) + first - 1) / first;
+        if (const UnitTraces* d = done_before(plan, i / np, i % np)) {
+            for (const TraceResult& m : d->members) st.ensemble.add(m);
+            st.done = true, st.stop = d->stop, st.passes = d->passes, st.error = d->error;
+            first_surface = d->surface;
+        } else if (!owned_here(plan, i / np, i % np)) {
+            if (!trace_only)
+                throw std::logic_error("simulate_case: an incidence neither traced nor given");
+            st.done = true;
+        }
     }
     std::unique_ptr<CaseModels> models;
-    std::string first_surface; // where realisation 0 is, for the file
     const auto start = Clock::now();
     for (;;) {
         int needed = 0;
@@ -88,13 +114,14 @@ CaseResult simulate_ensemble(const CaseConfig& c, const CaseRunSettings& s, cons
                 const int has = st.ensemble.realisations();
                 if (!st.done && r >= has && r < st.wanted) work.push_back(i);
             }
-            if (work.empty() && !(r == 0 && !models)) continue;
+            if (work.empty()) continue;
+            check_stop(plan);
             const HeightField surface = make_surface(c, realisation(c.surface, r), s, o, result);
             if (r == 0) first_surface = result.surface_origin.cache_path;
             auto t = Clock::now();
             const Scene scene(surface);
             t = result.phases.add_since("scene", t);
-            if (!models) { // a model fitted to a surface takes the first one
+            if (!models && r == 0 && !trace_only) { // a model fitted to a surface takes the first
                 models = std::make_unique<CaseModels>(c, *c.ndf, &surface);
                 result.phases.add_since("models_setup", t);
             }
@@ -117,6 +144,7 @@ CaseResult simulate_ensemble(const CaseConfig& c, const CaseRunSettings& s, cons
                 const auto t0 = Clock::now();
                 TraceResult tr = trace_incidence(scene, parts, sensor, wi, ts);
                 result.phases.add_since("trace", t0);
+                if (!members.empty()) members[i].push_back(tr);
                 st.ensemble.add(std::move(tr));
             }
         }
@@ -167,6 +195,22 @@ CaseResult simulate_ensemble(const CaseConfig& c, const CaseRunSettings& s, cons
             st.wanted = want;
         }
     }
+    // Each incidence traced here, handed on whole (its surfaces and how its target ended).
+    if (!members.empty())
+        for (size_t i = 0; i < n; ++i)
+            if (!members[i].empty()) {
+                const State& st = states[i];
+                plan->traced(i / np, i % np,
+                             {std::move(members[i]), st.stop, st.passes, st.error, first_surface});
+            }
+    if (trace_only) return result;
+    if (!models) { // every incidence came traced
+        HeightField surface;
+        if (c.needs_surface()) surface = make_surface(c, realisation(c.surface, 0), s, o, result);
+        const auto t = Clock::now();
+        models = std::make_unique<CaseModels>(c, *c.ndf, c.needs_surface() ? &surface : nullptr);
+        result.phases.add_since("models_setup", t);
+    }
     // The models, once per incidence, and the comparison with the ensemble.
     SimulationResult& sim = result.simulation;
     sim = SimulationResult(c.theta_i_deg, c.phi_i_deg, sensor);
@@ -216,23 +260,46 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
     CaseResult result;
     result.config = &c;
     result.phases.add("ndf", c.ndf_seconds);
-    const HeightField surface = make_surface(c, c.surface, s, o, result);
+    const UnitPlan* plan = s.plan;
+    const bool trace_only = plan && plan->trace_only;
+    // The surface and its scene only where something is traced here (or a model needs it).
+    bool to_trace = false;
+    std::string given_surface;
+    for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti)
+        for (size_t pi = 0; pi < c.phi_i_deg.size(); ++pi) {
+            if (const UnitTraces* d = done_before(plan, ti, pi)) given_surface = d->surface;
+            else if (owned_here(plan, ti, pi)) to_trace = true;
+            else if (!trace_only)
+                throw std::logic_error("simulate_case: an incidence neither traced nor given");
+        }
+    HeightField surface;
+    if (to_trace || (!trace_only && c.needs_surface()))
+        surface = make_surface(c, c.surface, s, o, result);
     auto t = Clock::now();
-    const Scene scene(surface); // one surface per case: sweeps never regenerate it
+    std::unique_ptr<Scene> scene; // one surface per case: sweeps never regenerate it
+    if (to_trace) scene = std::make_unique<Scene>(surface);
     t = result.phases.add_since("scene", t);
     result.sensor = std::make_unique<BeckersSensor>(c.sensor_cells);
     const auto materials = c.material.parts();
     std::vector<const Material*> parts;
     for (const auto& m : materials) parts.push_back(m.get());
-    CaseModels models(c, *c.ndf, &surface);
+    std::unique_ptr<CaseModels> models_owner;
+    if (!trace_only)
+        models_owner =
+            std::make_unique<CaseModels>(c, *c.ndf, c.needs_surface() || to_trace ? &surface : nullptr);
     t = result.phases.add_since("models_setup", t);
 
     SimulationResult& sim = result.simulation;
     sim = SimulationResult(c.theta_i_deg, c.phi_i_deg, *result.sensor);
-    sim.surface = result.surface_origin.loaded ? c.surface.input : result.surface_origin.cache_path;
+    sim.surface = !to_trace ? given_surface
+                  : result.surface_origin.loaded ? c.surface.input
+                                                 : result.surface_origin.cache_path;
     double trace_seconds = 0, incidence_seconds = 0;
     for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti)
         for (size_t pi = 0; pi < c.phi_i_deg.size(); ++pi) {
+            const UnitTraces* given = done_before(plan, ti, pi);
+            if (!given && !owned_here(plan, ti, pi)) continue;
+            check_stop(plan);
             if (o.started) o.started(incidence_label(c, ti, pi));
             const auto start = Clock::now();
             const Vec3 wi =
@@ -240,8 +307,12 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
             TraceSettings st = c.trace;
             st.seed = s.seed;
             st.stream = incidence_stream(s.case_index, ti, pi);
-            const TraceResult r = trace_incidence(scene, parts, *result.sensor, wi, st);
+            const TraceResult r =
+                given ? given->members.at(0) : trace_incidence(*scene, parts, *result.sensor, wi, st);
             trace_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+            if (!given && plan && plan->traced) plan->traced(ti, pi, {{r}, r.stop, 1, -1, sim.surface});
+            if (trace_only) continue;
+            CaseModels& models = *models_owner;
             // The models' V-cavity paths draw from their own streams (key "VCAVITY").
             const auto albedos = models.evaluate(wi, *result.sensor, s.seed, st.stream);
             std::vector<Comparison> comparisons;
@@ -254,7 +325,8 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
                 o.finished(
                     {ti, pi, c.theta_i_deg[ti], c.phi_i_deg[pi], &r, &sim, &comparisons, &albedos});
         }
-    result.models = models.results();
+    if (trace_only) return result;
+    result.models = models_owner->results();
     result.phases.add("trace", trace_seconds);
     add_model_phases(result);
     double model_seconds = 0;

@@ -4,6 +4,7 @@
 // models evaluated on the same sensor cells, and a typed result comes back, with the wall time of
 // every phase. `gonio run` and `gonio model` only parse arguments, call these and print.
 #include "gonio/config/config.h"
+#include "gonio/distributed/work_units.h"
 #include "gonio/io/simulation_result.h"
 #include "gonio/model/model_comparison.h"
 #include "gonio/pipeline/case_models.h"
@@ -43,6 +44,9 @@ struct CaseRunSettings {
     size_t case_index = 0; // mixed into every random stream
     int threads = 1;       // FFTW workers (TBB is capped by the caller)
     SurfaceCache cache{std::string()};
+    // Shards, MPI ranks, checkpoints: which incidences to trace here and which came traced
+    // (gonio/distributed/work_units.h). Null: trace everything.
+    const UnitPlan* plan = nullptr;
 };
 
 struct CaseResult {

@@ -1,0 +1,136 @@
+#include "gonio/distributed/unit_file.h"
+
+#include "gonio/io/hdf5_handles.h"
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace gonio {
+
+namespace {
+constexpr const char* kFormat = "gonio-units 1";
+
+void write_int(hid_t o, const char* name, long long v) {
+    h5::write_int_attribute(o, name, v);
+}
+long long read_int(hid_t o, const char* name) {
+    h5::Handle a(H5Aopen(o, name, H5P_DEFAULT), H5Aclose, name);
+    long long v = 0;
+    h5::check(H5Aread(a, H5T_NATIVE_LLONG, &v), name);
+    return v;
+}
+} // namespace
+
+std::string UnitFileHeader::differs_from(const UnitFileHeader& o) const {
+    if (version != o.version || git_hash != o.git_hash)
+        return "gonio " + version + " (git " + git_hash + ") against gonio " + o.version +
+               " (git " + o.git_hash + ")";
+    if (seed != o.seed) return "seed " + std::to_string(seed) + " against " + std::to_string(o.seed);
+    if (effective_toml != o.effective_toml) return "another effective config";
+    if (units_total != o.units_total) return "another number of work units";
+    return "";
+}
+
+UnitFileWriter::UnitFileWriter(const std::string& path, const UnitFileHeader& h, bool append)
+    : path_(path) {
+    h5::silence_errors();
+    if (append) {
+        file_ = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+        if (file_ < 0) throw std::runtime_error(path + ": cannot reopen the checkpoint");
+        return;
+    }
+    file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (file_ < 0) throw std::runtime_error(path + ": cannot create");
+    const hid_t f = hid_t(file_);
+    h5::write_string_attribute(f, "file_format", kFormat);
+    h5::write_string_attribute(f, "gonio_version", h.version);
+    h5::write_string_attribute(f, "git_hash", h.git_hash);
+    h5::write_string_attribute(f, "config_effective_toml", h.effective_toml);
+    h5::write_string_attribute(f, "config_path", h.config_path);
+    h5::write_string_attribute(f, "config_toml", h.config_toml);
+    h5::write_string_attribute(f, "config_overrides", h.overrides);
+    h5::write_string_attribute(f, "command_line", h.command_line);
+    h5::write_string_attribute(f, "shard", h.shard);
+    write_int(f, "seed", h.seed);
+    write_int(f, "units_total", h.units_total);
+    H5Fflush(f, H5F_SCOPE_GLOBAL);
+}
+
+UnitFileWriter::~UnitFileWriter() {
+    close();
+}
+
+void UnitFileWriter::close() {
+    if (file_ >= 0) H5Fclose(hid_t(file_));
+    file_ = -1;
+}
+
+void UnitFileWriter::add(const StoredUnit& u) {
+    const std::vector<char> bytes = serialise(u.traces);
+    const std::string name = "unit_" + std::to_string(u.unit);
+    const hsize_t n = bytes.size();
+    h5::Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose, "dataspace");
+    if (H5Lexists(hid_t(file_), name.c_str(), H5P_DEFAULT) > 0)
+        H5Ldelete(hid_t(file_), name.c_str(), H5P_DEFAULT); // a unit redone after a kill
+    h5::Handle d(H5Dcreate2(hid_t(file_), name.c_str(), H5T_NATIVE_UINT8, space, H5P_DEFAULT,
+                            H5P_DEFAULT, H5P_DEFAULT),
+                 H5Dclose, ("create " + name).c_str());
+    h5::check(H5Dwrite(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()),
+              ("write " + name).c_str());
+    write_int(d, "unit", u.unit);
+    write_int(d, "case_index", (long long)u.case_index);
+    write_int(d, "theta_index", (long long)u.theta_index);
+    write_int(d, "phi_index", (long long)u.phi_index);
+    h5::check(H5Fflush(hid_t(file_), H5F_SCOPE_GLOBAL), "flush");
+}
+
+std::vector<StoredUnit> read_unit_file(const std::string& path, UnitFileHeader* header) {
+    h5::silence_errors();
+    if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
+    if (H5Fis_hdf5(path.c_str()) <= 0) throw std::runtime_error(path + ": not an HDF5 file");
+    h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
+                 ("open " + path).c_str());
+    if (H5Aexists(f, "file_format") <= 0 || h5::read_string_attribute(f, "file_format") != kFormat)
+        throw std::runtime_error(path + ": not a gonio unit file (a part of `gonio run --shard` "
+                                        "or a checkpoint)");
+    UnitFileHeader h;
+    h.version = h5::read_string_attribute(f, "gonio_version");
+    h.git_hash = h5::read_string_attribute(f, "git_hash");
+    h.effective_toml = h5::read_string_attribute(f, "config_effective_toml");
+    h.config_path = h5::read_string_attribute(f, "config_path");
+    h.config_toml = h5::read_string_attribute(f, "config_toml");
+    h.overrides = h5::read_string_attribute(f, "config_overrides");
+    h.command_line = h5::read_string_attribute(f, "command_line");
+    h.shard = h5::read_string_attribute(f, "shard");
+    h.seed = read_int(f, "seed");
+    h.units_total = read_int(f, "units_total");
+    if (header) *header = h;
+    std::vector<StoredUnit> units;
+    H5G_info_t info;
+    h5::check(H5Gget_info(f, &info), "H5Gget_info");
+    for (hsize_t k = 0; k < info.nlinks; ++k) {
+        const ssize_t len =
+            H5Lget_name_by_idx(f, ".", H5_INDEX_NAME, H5_ITER_INC, k, nullptr, 0, H5P_DEFAULT);
+        std::string name(size_t(len), '\0');
+        H5Lget_name_by_idx(f, ".", H5_INDEX_NAME, H5_ITER_INC, k, name.data(), size_t(len) + 1,
+                           H5P_DEFAULT);
+        if (name.rfind("unit_", 0) != 0) continue;
+        h5::Handle d(H5Dopen2(f, name.c_str(), H5P_DEFAULT), H5Dclose, name.c_str());
+        h5::Handle space(H5Dget_space(d), H5Sclose, "dataspace");
+        hsize_t n = 0;
+        H5Sget_simple_extent_dims(space, &n, nullptr);
+        std::vector<char> bytes(n);
+        h5::check(H5Dread(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()),
+                  ("read " + name).c_str());
+        StoredUnit u;
+        u.unit = read_int(d, "unit");
+        u.case_index = size_t(read_int(d, "case_index"));
+        u.theta_index = size_t(read_int(d, "theta_index"));
+        u.phi_index = size_t(read_int(d, "phi_index"));
+        u.traces = deserialise(bytes);
+        units.push_back(std::move(u));
+    }
+    return units;
+}
+
+} // namespace gonio
