@@ -77,8 +77,7 @@ int gonio_main(int argc, char** argv, const gonio::MpiJob& job) {
     run_cmd->add_option("--shard", run.shard,
                         "i/N: trace only shard i of N into a part file for gonio merge (default "
                         "from SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT)");
-    run_cmd->add_flag("--resume", run.resume,
-                      "Continue an interrupted run from OUT.checkpoint");
+    run_cmd->add_flag("--resume", run.resume, "Continue an interrupted run from OUT.checkpoint");
 
     std::vector<std::string> merge_parts;
     std::string merge_output;

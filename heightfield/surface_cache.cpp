@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
-#include <stdexcept>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
 
 namespace gonio {
 
@@ -61,7 +61,8 @@ std::optional<HeightField> SurfaceCache::load(const std::string& key, const std:
     }
     if (a.text["gonio_identity"] != identity) return std::nullopt;
     if (attrs) *attrs = a;
-    std::error_code ec; // the time of last use, for eviction (best effort: a read-only cache is fine)
+    std::error_code
+        ec; // the time of last use, for eviction (best effort: a read-only cache is fine)
     std::filesystem::last_write_time(path(key), std::filesystem::file_time_type::clock::now(), ec);
     return s;
 }
@@ -113,8 +114,9 @@ std::vector<CacheEntry> SurfaceCache::list() const {
         }
         out.push_back(c);
     }
-    std::sort(out.begin(), out.end(),
-              [](const CacheEntry& a, const CacheEntry& b) { return a.age_seconds < b.age_seconds; });
+    std::sort(out.begin(), out.end(), [](const CacheEntry& a, const CacheEntry& b) {
+        return a.age_seconds < b.age_seconds;
+    });
     return out;
 }
 
@@ -148,8 +150,9 @@ int SurfaceCache::evict(long long limit, const std::string& keep) const {
         total += c.bytes;
         entries.push_back(c);
     }
-    std::sort(entries.begin(), entries.end(),
-              [](const CacheEntry& a, const CacheEntry& b) { return a.age_seconds > b.age_seconds; });
+    std::sort(entries.begin(), entries.end(), [](const CacheEntry& a, const CacheEntry& b) {
+        return a.age_seconds > b.age_seconds;
+    });
     int removed = 0;
     for (const CacheEntry& c : entries) {
         if (total <= limit) break;

@@ -21,11 +21,15 @@ inline std::string fixture(const std::string& name, const std::string& config,
     const fs::path cfg =
         dir / (name + "_" + std::to_string(key) + "_" + std::to_string(::getpid()) + ".toml");
     write(cfg, config);
+    // Each maker writes its own file and renames it: tests that CTest runs at once may make the
+    // same fixture together (a run's checkpoint beside its output is its own).
+    const fs::path mine = out.string() + "." + std::to_string(::getpid()) + ".h5";
     const Run r =
-        run_gonio(dir, command + " '" + cfg.string() + "' -o '" + out.string() +
+        run_gonio(dir, command + " '" + cfg.string() + "' -o '" + mine.string() +
                            "' --overwrite --quiet" + (command == "run" ? " --no-cache" : ""));
     fs::remove(cfg);
     if (r.code != 0) throw std::runtime_error("fixture " + name + ": " + r.err);
+    fs::rename(mine, out);
     return out.string();
 }
 

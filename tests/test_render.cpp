@@ -1,5 +1,7 @@
 // gonio render: a white furnace, a Lambertian table against the analytic Lambertian, convergence
 // as 1/sqrt(spp), thread-count independence, the image files, and the command's bad arguments.
+#include "core/chi_square.h"
+#include "core/random.h"
 #include "gonio/cli/cli_common.h"
 #include "gonio/render/colour_difference.h"
 #include "gonio/render/renderer.h"
@@ -215,4 +217,54 @@ TEST_CASE("gonio render: images, the Delta E00 comparison, and bad arguments") {
     bad("-o x.png --env missing.exr", 1, "missing.exr");
     bad("-o x.png --object teapot", 2, "teapot");
     bad("-o x.png --compare both", 2, "both");
+}
+
+TEST_CASE("render: the environment sampler follows its pdf (chi-square), and an EXR map loads") {
+    // A sky with a bright patch: samples binned on a 16 x 8 lat-long grid against the pdf's mass.
+    Image m(64, 32);
+    for (int y = 0; y < m.height; ++y)
+        for (int x = 0; x < m.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                m.at(x, y)[c] = float(0.2 + (x > 40 && x < 46 && y > 8 && y < 12 ? 30.0 : 0.0) +
+                                      0.1 * std::sin(0.3 * x));
+    const Environment env(m);
+    const int nu = 16, nv = 8, n = 400000;
+    std::vector<double> observed(nu * nv, 0.0), expected(nu * nv, 0.0);
+    Rng rng{41, 1};
+    for (int k = 0; k < n; ++k) {
+        double pdf = 0;
+        const Vec3 d = env.sample(rng.uniform(), rng.uniform(), pdf);
+        REQUIRE(pdf == doctest::Approx(env.pdf(d)).epsilon(1e-9));
+        const int u = std::min(nu - 1, int(spherical_phi(d) / kTwoPi * nu));
+        const int v = std::min(nv - 1, int(spherical_theta(d) / kPi * nv));
+        observed[v * nu + u] += 1;
+    }
+    // Expected: the pdf integrated over each bin (midpoint rule on a grid finer than the texels).
+    const int sub = 32;
+    double total = 0;
+    for (int v = 0; v < nv; ++v)
+        for (int u = 0; u < nu; ++u) {
+            double mass = 0;
+            for (int i = 0; i < sub; ++i)
+                for (int j = 0; j < sub; ++j) {
+                    const double phi = kTwoPi * (u + (i + 0.5) / sub) / nu;
+                    const double z0 = std::cos(kPi * (v + double(j) / sub) / nv);
+                    const double z1 = std::cos(kPi * (v + (j + 1.0) / sub) / nv);
+                    const double z = 0.5 * (z0 + z1), r = std::sqrt(1 - z * z);
+                    mass += env.pdf({r * std::cos(phi), r * std::sin(phi), z}) * (z0 - z1) *
+                            (kTwoPi / (nu * sub));
+                }
+            expected[v * nu + u] = n * mass;
+            total += mass;
+        }
+    CHECK(total == doctest::Approx(1.0).epsilon(1e-3));
+    const ChiSquareResult r = chi_square_test(observed, expected);
+    CHECK(r.failure == "");
+    CHECK(r.p_value > 0.01);
+    // The same map through an EXR file.
+    const fs::path dir = fresh_dir("render_env");
+    write_exr(m, (dir / "env.exr").string());
+    const Environment loaded = Environment::from_exr((dir / "env.exr").string());
+    const Vec3 d = spherical_direction(1.0, 2.0);
+    CHECK(loaded.radiance(d)[0] == doctest::Approx(env.radiance(d)[0]));
 }

@@ -43,7 +43,7 @@ struct RunOptions {
     std::string cache_dir;
     int threads = 0;
     std::string command_line;
-    std::string shard; // "i/N": trace that share of the work units into a part file
+    std::string shard;   // "i/N": trace that share of the work units into a part file
     bool resume = false; // continue from OUT.checkpoint
 };
 // `gonio run`: trace every case and incidence on the explicit surface; write HDF5.

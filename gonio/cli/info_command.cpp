@@ -97,12 +97,13 @@ void print_text(const ResultSummary& s) {
     std::printf("  config %s\n  command %s\n", attribute(s.attributes, "config_path").c_str(),
                 attribute(s.attributes, "command_line").c_str());
     if (s.attributes.count("mpi_ranks"))
-        std::printf("  ran on %s process(es) x %s thread(s)%s\n",
-                    attribute(s.attributes, "mpi_ranks").c_str(),
-                    attribute(s.attributes, "threads_per_rank").c_str(),
-                    s.attributes.count("merged_parts")
-                        ? (", merged from " + attribute(s.attributes, "merged_parts") + " parts").c_str()
-                        : "");
+        std::printf(
+            "  ran on %s process(es) x %s thread(s)%s\n",
+            attribute(s.attributes, "mpi_ranks").c_str(),
+            attribute(s.attributes, "threads_per_rank").c_str(),
+            s.attributes.count("merged_parts")
+                ? (", merged from " + attribute(s.attributes, "merged_parts") + " parts").c_str()
+                : "");
     auto print_timings = [](const char* indent,
                             const std::vector<std::pair<std::string, double>>& timings) {
         if (timings.empty()) return;

@@ -1,10 +1,10 @@
 #include "core/config_error.h"
 #include "gonio/cli/cli_common.h"
 #include "gonio/cli/commands.h"
-#include "gonio/distributed/stop_signal.h"
-#include "gonio/distributed/work_units.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
+#include "gonio/distributed/stop_signal.h"
+#include "gonio/distributed/work_units.h"
 #include "gonio/io/result_writer.h"
 #include "gonio/pipeline/simulate_case.h"
 

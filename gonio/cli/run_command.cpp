@@ -2,20 +2,20 @@
 #include "gonio/cli/commands.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
-#include "gonio/io/result_writer.h"
 #include "gonio/distributed/mpi_job.h"
 #include "gonio/distributed/stop_signal.h"
-#include "heightfield/surface_source.h"
 #include "gonio/distributed/unit_file.h"
+#include "gonio/io/result_writer.h"
 #include "gonio/pipeline/simulate_case.h"
+#include "gonio/trace/gonioreflectometer.h"
 #include "gonio_version.h"
-
-#include <functional>
-#include <map>
-#include <unistd.h>
+#include "heightfield/surface_source.h"
 
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <map>
+#include <unistd.h>
 
 namespace gonio {
 
@@ -59,7 +59,8 @@ UnitFileHeader unit_header(const Config& cfg, const std::string& command_line) {
     for (const auto& ov : cfg.overrides) h.overrides += ov + "\n";
     h.command_line = command_line;
     h.seed = (long long)cfg.seed;
-    for (const auto& c : cfg.cases) h.units_total += (long long)(c.theta_i_deg.size() * c.phi_i_deg.size());
+    for (const auto& c : cfg.cases)
+        h.units_total += (long long)(c.theta_i_deg.size() * c.phi_i_deg.size());
     return h;
 }
 
@@ -74,12 +75,11 @@ std::vector<long long> first_units(const Config& cfg) {
     return first;
 }
 
-int assemble_and_write(const Config& cfg, const RunOptions& o, const std::string& output,
-                       const std::vector<std::map<IncidenceKey, UnitTraces>>& done,
-                       const std::function<void(size_t ci, size_t ti, size_t pi,
-                                                const UnitTraces&)>& traced,
-                       PhaseTimes run, PhaseTimes::Clock::time_point start, int ranks,
-                       int merged_parts) {
+int assemble_and_write(
+    const Config& cfg, const RunOptions& o, const std::string& output,
+    const std::vector<std::map<IncidenceKey, UnitTraces>>& done,
+    const std::function<void(size_t ci, size_t ti, size_t pi, const UnitTraces&)>& traced,
+    PhaseTimes run, PhaseTimes::Clock::time_point start, int ranks, int merged_parts) {
     auto t = PhaseTimes::Clock::now();
     ResultWriter writer(output, o.overwrite); // an existing or unwritable output fails here
     writer.write_run(cfg, o.command_line);
@@ -115,7 +115,10 @@ int assemble_and_write(const Config& cfg, const RunOptions& o, const std::string
         };
         UnitPlan plan;
         plan.done = &done[ci];
-        if (traced) plan.traced = [&, ci](size_t ti, size_t pi, const UnitTraces& u) { traced(ci, ti, pi, u); };
+        if (traced)
+            plan.traced = [&, ci](size_t ti, size_t pi, const UnitTraces& u) {
+                traced(ci, ti, pi, u);
+            };
         plan.stop_requested = [] { return stop_requested(); };
         settings.case_index = ci;
         settings.plan = &plan;
@@ -137,11 +140,28 @@ int assemble_and_write(const Config& cfg, const RunOptions& o, const std::string
 }
 
 // A shard: trace the units it owns, write them to the part file.
-int run_shard(const Config& cfg, const RunOptions& o, const Shard& shard, const std::string& output) {
+int run_shard(const Config& cfg, const RunOptions& o, const Shard& shard,
+              const std::string& output) {
     if (!o.overwrite && std::filesystem::exists(output))
         throw std::runtime_error(output + ": exists; pass --overwrite to replace it");
     UnitFileHeader header = unit_header(cfg, o.command_line);
     header.shard = shard.text();
+    // A single-incidence job has one unit: its shards share out the batches instead.
+    header.by_batches = header.units_total == 1;
+    Config local = cfg;
+    if (header.by_batches) {
+        CaseConfig& c = local.cases[0];
+        if (c.trace.target.active() || c.surface.realisations > 1)
+            throw std::runtime_error(
+                "--shard " + shard.text() +
+                ": a single-incidence job shards by batches, which an accuracy "
+                "target or a surface ensemble does not allow");
+        if (shard.count > c.trace.batches)
+            throw std::runtime_error("--shard " + shard.text() + ": more shards than the " +
+                                     std::to_string(c.trace.batches) + " batches (trace.batches)");
+        c.trace.batch_shard_index = shard.index;
+        c.trace.batch_shard_count = shard.count;
+    }
     const std::string tmp = output + ".tmp-" + std::to_string(::getpid());
     long long written = 0;
     try {
@@ -152,12 +172,14 @@ int run_shard(const Config& cfg, const RunOptions& o, const Shard& shard, const 
         settings.seed = cfg.seed;
         settings.threads = worker_threads(o.threads);
         settings.cache = surface_cache(o.no_cache, o.cache_dir);
-        for (size_t ci = 0; ci < cfg.cases.size(); ++ci) {
-            const CaseConfig& c = cfg.cases[ci];
+        for (size_t ci = 0; ci < local.cases.size(); ++ci) {
+            const CaseConfig& c = local.cases[ci];
             const size_t np = c.phi_i_deg.size();
             UnitPlan plan;
             plan.trace_only = true;
-            plan.owned = [&](size_t ti, size_t pi) { return shard.owns(first[ci] + (long long)(ti * np + pi)); };
+            plan.owned = [&](size_t ti, size_t pi) {
+                return header.by_batches || shard.owns(first[ci] + (long long)(ti * np + pi));
+            };
             plan.traced = [&](size_t ti, size_t pi, const UnitTraces& u) {
                 part.add({first[ci] + (long long)(ti * np + pi), ci, ti, pi, u});
                 progress.update(++written, c.name);
@@ -175,10 +197,12 @@ int run_shard(const Config& cfg, const RunOptions& o, const Shard& shard, const 
     }
     std::error_code ec;
     std::filesystem::rename(tmp, output, ec);
-    if (ec) throw std::runtime_error("cannot rename " + tmp + " to " + output + ": " + ec.message());
+    if (ec)
+        throw std::runtime_error("cannot rename " + tmp + " to " + output + ": " + ec.message());
     if (!o.quiet)
-        std::printf("wrote %s: shard %s, %lld of %lld units (gonio merge puts the parts together)\n",
-                    output.c_str(), shard.text().c_str(), written, header.units_total);
+        std::printf(
+            "wrote %s: shard %s, %lld of %lld units (gonio merge puts the parts together)\n",
+            output.c_str(), shard.text().c_str(), written, header.units_total);
     return 0;
 }
 // Under mpirun: every surface made once (the k-th by rank k mod K, shared through the cache),
@@ -232,7 +256,8 @@ int run_mpi(const Config& cfg, const RunOptions& o, const std::string& output, P
         std::vector<StoredUnit> all = mpi_receive_units();
         for (StoredUnit& u : mine) all.push_back(std::move(u));
         std::vector<std::map<IncidenceKey, UnitTraces>> done(cfg.cases.size());
-        for (StoredUnit& u : all) done[u.case_index][{u.theta_index, u.phi_index}] = std::move(u.traces);
+        for (StoredUnit& u : all)
+            done[u.case_index][{u.theta_index, u.phi_index}] = std::move(u.traces);
         return assemble_and_write(cfg, o, output, done, nullptr, run, start, job.size, 0);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "gonio: error (rank %d of %d): %s\n", job.rank, job.size, e.what());
@@ -262,10 +287,12 @@ int run_run_command(const RunOptions& o) {
         std::vector<std::map<IncidenceKey, UnitTraces>> done(cfg.cases.size());
         const bool resuming = o.resume && std::filesystem::exists(checkpoint);
         if (o.resume && !resuming)
-            throw std::runtime_error(checkpoint + ": no checkpoint to resume (run without --resume)");
+            throw std::runtime_error(checkpoint +
+                                     ": no checkpoint to resume (run without --resume)");
         if (!o.resume && std::filesystem::exists(checkpoint) && !o.overwrite)
-            throw std::runtime_error(checkpoint + ": an interrupted run's checkpoint; pass --resume "
-                                                  "to continue it or --overwrite to start again");
+            throw std::runtime_error(checkpoint +
+                                     ": an interrupted run's checkpoint; pass --resume "
+                                     "to continue it or --overwrite to start again");
         if (!o.overwrite && std::filesystem::exists(output))
             throw std::runtime_error(output + ": exists; pass --overwrite to replace it");
         if (resuming) {
@@ -308,35 +335,71 @@ int run_merge_command(const std::vector<std::string>& parts, const std::string& 
     UnitFileHeader first;
     std::map<long long, std::string> owner; // unit -> the part that holds it
     std::vector<StoredUnit> units;
+    std::map<int, std::pair<std::string, StoredUnit>> batch_parts; // shard index -> its part
+    int batch_count = 0;
     for (size_t k = 0; k < parts.size(); ++k) {
         UnitFileHeader h;
         std::vector<StoredUnit> got = read_unit_file(parts[k], &h);
-        if (k == 0) first = h;
+        if (k == 0)
+            first = h;
         else if (const std::string why = h.differs_from(first); !why.empty())
             throw std::runtime_error(parts[k] + ": a part of another run than " + parts[0] + " (" +
                                      why + ")");
+        if (h.by_batches) { // a single-incidence job: the parts hold shares of the batches
+            const Shard sh = parse_shard(h.shard);
+            batch_count = sh.count;
+            const auto [it, fresh] =
+                batch_parts.emplace(sh.index, std::make_pair(parts[k], StoredUnit{}));
+            if (!fresh)
+                throw std::runtime_error("shard " + sh.text() + " is in both " + it->second.first +
+                                         " and " + parts[k] + " (a part given twice?)");
+            if (got.size() != 1)
+                throw std::runtime_error(parts[k] + ": a batch shard without its unit");
+            it->second.second = std::move(got[0]);
+            continue;
+        }
         for (StoredUnit& u : got) {
             const auto [it, fresh] = owner.emplace(u.unit, parts[k]);
             if (!fresh)
                 throw std::runtime_error("unit " + std::to_string(u.unit) + " is in both " +
-                                         it->second + " and " + parts[k] + " (a part given twice?)");
+                                         it->second + " and " + parts[k] +
+                                         " (a part given twice?)");
             units.push_back(std::move(u));
         }
+    }
+    if (!batch_parts.empty()) {
+        std::string missing;
+        for (int i = 0; i < batch_count; ++i)
+            if (!batch_parts.count(i)) missing += (missing.empty() ? "" : ", ") + std::to_string(i);
+        if (!missing.empty())
+            throw std::runtime_error("the batch shards " + missing + " of " +
+                                     std::to_string(batch_count) +
+                                     " are in none of the parts: a part is missing");
+        std::vector<TraceResult> traces;
+        for (auto& [i, part] : batch_parts) traces.push_back(part.second.traces.members.at(0));
+        StoredUnit u = batch_parts.begin()->second.second;
+        u.traces.members = {combine_batch_shards(traces)};
+        owner.emplace(u.unit, "the batch shards");
+        units.push_back(std::move(u));
     }
     std::string missing;
     long long count = 0;
     for (long long u = 0; u < first.units_total; ++u)
-        if (!owner.count(u) && ++count <= 8) missing += (missing.empty() ? "" : ", ") + std::to_string(u);
+        if (!owner.count(u) && ++count <= 8)
+            missing += (missing.empty() ? "" : ", ") + std::to_string(u);
     if (count > 0)
-        throw std::runtime_error(std::to_string(count) + " of " + std::to_string(first.units_total) +
+        throw std::runtime_error(std::to_string(count) + " of " +
+                                 std::to_string(first.units_total) +
                                  " units are in none of the parts (" + missing +
                                  (count > 8 ? ", ..." : "") + "): a part is missing");
     std::vector<std::string> overrides;
     {
         std::string line;
         for (char ch : first.overrides)
-            if (ch == '\n') overrides.push_back(line), line.clear();
-            else line += ch;
+            if (ch == '\n')
+                overrides.push_back(line), line.clear();
+            else
+                line += ch;
     }
     Config cfg = parse_config(first.effective_toml, first.config_path);
     cfg.text = first.config_toml;

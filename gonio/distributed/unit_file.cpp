@@ -25,7 +25,8 @@ std::string UnitFileHeader::differs_from(const UnitFileHeader& o) const {
     if (version != o.version || git_hash != o.git_hash)
         return "gonio " + version + " (git " + git_hash + ") against gonio " + o.version +
                " (git " + o.git_hash + ")";
-    if (seed != o.seed) return "seed " + std::to_string(seed) + " against " + std::to_string(o.seed);
+    if (seed != o.seed)
+        return "seed " + std::to_string(seed) + " against " + std::to_string(o.seed);
     if (effective_toml != o.effective_toml) return "another effective config";
     if (units_total != o.units_total) return "another number of work units";
     return "";
@@ -40,7 +41,9 @@ UnitFileWriter::UnitFileWriter(const std::string& path, const UnitFileHeader& h,
         return;
     }
     file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-    if (file_ < 0) throw std::runtime_error(path + ": cannot create");
+    if (file_ < 0)
+        throw std::runtime_error(path +
+                                 ": cannot create (is another gonio writing the same output?)");
     const hid_t f = hid_t(file_);
     h5::write_string_attribute(f, "file_format", kFormat);
     h5::write_string_attribute(f, "gonio_version", h.version);
@@ -51,6 +54,7 @@ UnitFileWriter::UnitFileWriter(const std::string& path, const UnitFileHeader& h,
     h5::write_string_attribute(f, "config_overrides", h.overrides);
     h5::write_string_attribute(f, "command_line", h.command_line);
     h5::write_string_attribute(f, "shard", h.shard);
+    write_int(f, "by_batches", h.by_batches);
     write_int(f, "seed", h.seed);
     write_int(f, "units_total", h.units_total);
     H5Fflush(f, H5F_SCOPE_GLOBAL);
@@ -102,6 +106,7 @@ std::vector<StoredUnit> read_unit_file(const std::string& path, UnitFileHeader* 
     h.overrides = h5::read_string_attribute(f, "config_overrides");
     h.command_line = h5::read_string_attribute(f, "command_line");
     h.shard = h5::read_string_attribute(f, "shard");
+    h.by_batches = H5Aexists(f, "by_batches") > 0 && read_int(f, "by_batches") != 0;
     h.seed = read_int(f, "seed");
     h.units_total = read_int(f, "units_total");
     if (header) *header = h;

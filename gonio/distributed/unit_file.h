@@ -14,6 +14,7 @@ namespace gonio {
 struct UnitFileHeader {
     std::string version, git_hash, effective_toml, config_path, config_toml, overrides;
     std::string command_line, shard = "0/1";
+    bool by_batches = false; // a single-incidence job's shard: a share of the batches
     long long seed = 0, units_total = 0;
     // What must agree between parts of one job (or a checkpoint and the run resuming it); empty
     // when they do, else the first difference.

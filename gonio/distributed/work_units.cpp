@@ -27,7 +27,8 @@ Shard shard_from_environment() {
 namespace {
 struct Writer {
     std::vector<char> out;
-    template <class T> void put(const T& v) {
+    template <class T>
+    void put(const T& v) {
         const char* p = reinterpret_cast<const char*>(&v);
         out.insert(out.end(), p, p + sizeof(T));
     }
@@ -47,7 +48,8 @@ struct Reader {
     void need(size_t n) {
         if (at + n > in.size()) throw std::runtime_error("a truncated unit message");
     }
-    template <class T> void get(T& v) {
+    template <class T>
+    void get(T& v) {
         need(sizeof(T));
         std::memcpy(&v, in.data() + at, sizeof(T));
         at += sizeof(T);
@@ -69,10 +71,12 @@ struct Reader {
     }
 };
 // Every field of a trace, in one order for both directions.
-template <class IO, class Ledger> void ledger_fields(IO& io, Ledger& l) {
+template <class IO, class Ledger>
+void ledger_fields(IO& io, Ledger& l) {
     io(l.reflected), io(l.transmitted), io(l.absorbed), io(l.capped), io(l.lost), io(l.unaccounted);
 }
-template <class IO, class T> void trace_fields(IO& io, T& t) {
+template <class IO, class T>
+void trace_fields(IO& io, T& t) {
     io(t.orders), io(t.cells), io(t.channels), io(t.rays), io(t.segments), io(t.energy);
     io(t.transmitted), io(t.seconds), io(t.batches), io(t.energy_stderr), io(t.transmitted_stderr);
     io(t.energy_batches), io(t.transmitted_batches), io(t.stop), io(t.rounds), io(t.achieved_error);

@@ -28,11 +28,11 @@ using IncidenceKey = std::pair<size_t, size_t>; // (theta index, phi index)
 
 // How a case's incidences are shared out and put back (null members: trace everything here).
 struct UnitPlan {
-    std::function<bool(size_t ti, size_t pi)> owned; // traced here (null: all)
+    std::function<bool(size_t ti, size_t pi)> owned;          // traced here (null: all)
     const std::map<IncidenceKey, UnitTraces>* done = nullptr; // traced elsewhere or before
     std::function<void(size_t ti, size_t pi, const UnitTraces&)> traced; // as each finishes
-    bool trace_only = false;                   // shards and ranks: traces, no models, no result
-    std::function<bool()> stop_requested;      // checked between units (SIGINT)
+    bool trace_only = false;              // shards and ranks: traces, no models, no result
+    std::function<bool()> stop_requested; // checked between units (SIGINT)
 };
 
 // Thrown between units when stop_requested() says so.

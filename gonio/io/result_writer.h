@@ -8,8 +8,8 @@
 // under a temporary name and renamed when complete, so a failed run leaves nothing half-written.
 #include "gonio/config/config.h"
 #include "gonio/io/hdf5_handles.h"
-#include "gonio/io/simulation_result.h"
 #include "gonio/io/model_result.h"
+#include "gonio/io/simulation_result.h"
 #include "sensor/beckers_sensor.h"
 
 #include <string>

@@ -267,8 +267,10 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
     std::string given_surface;
     for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti)
         for (size_t pi = 0; pi < c.phi_i_deg.size(); ++pi) {
-            if (const UnitTraces* d = done_before(plan, ti, pi)) given_surface = d->surface;
-            else if (owned_here(plan, ti, pi)) to_trace = true;
+            if (const UnitTraces* d = done_before(plan, ti, pi))
+                given_surface = d->surface;
+            else if (owned_here(plan, ti, pi))
+                to_trace = true;
             else if (!trace_only)
                 throw std::logic_error("simulate_case: an incidence neither traced nor given");
         }
@@ -285,13 +287,13 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
     for (const auto& m : materials) parts.push_back(m.get());
     std::unique_ptr<CaseModels> models_owner;
     if (!trace_only)
-        models_owner =
-            std::make_unique<CaseModels>(c, *c.ndf, c.needs_surface() || to_trace ? &surface : nullptr);
+        models_owner = std::make_unique<CaseModels>(
+            c, *c.ndf, c.needs_surface() || to_trace ? &surface : nullptr);
     t = result.phases.add_since("models_setup", t);
 
     SimulationResult& sim = result.simulation;
     sim = SimulationResult(c.theta_i_deg, c.phi_i_deg, *result.sensor);
-    sim.surface = !to_trace ? given_surface
+    sim.surface = !to_trace                      ? given_surface
                   : result.surface_origin.loaded ? c.surface.input
                                                  : result.surface_origin.cache_path;
     double trace_seconds = 0, incidence_seconds = 0;
@@ -307,10 +309,11 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
             TraceSettings st = c.trace;
             st.seed = s.seed;
             st.stream = incidence_stream(s.case_index, ti, pi);
-            const TraceResult r =
-                given ? given->members.at(0) : trace_incidence(*scene, parts, *result.sensor, wi, st);
+            const TraceResult r = given ? given->members.at(0)
+                                        : trace_incidence(*scene, parts, *result.sensor, wi, st);
             trace_seconds += std::chrono::duration<double>(Clock::now() - start).count();
-            if (!given && plan && plan->traced) plan->traced(ti, pi, {{r}, r.stop, 1, -1, sim.surface});
+            if (!given && plan && plan->traced)
+                plan->traced(ti, pi, {{r}, r.stop, 1, -1, sim.surface});
             if (trace_only) continue;
             CaseModels& models = *models_owner;
             // The models' V-cavity paths draw from their own streams (key "VCAVITY").

@@ -63,26 +63,33 @@ TraceResult BatchTally::finish() const {
         return v;
     };
     res.energy_batches = per_batch(energy_);
+    if (transmits_) res.transmitted_batches = per_batch(transmitted_);
+    res.ledger_batches.reflected = per_batch(reflected_);
+    if (transmits_) res.ledger_batches.transmitted = per_batch(through_);
+    res.ledger_batches.absorbed = per_batch(absorbed_),
+    res.ledger_batches.capped = per_batch(capped_);
+    res.ledger_batches.lost = per_batch(lost_);
+    complete(res, transmits_);
+    return res;
+}
+
+void BatchTally::complete(TraceResult& res, bool transmits) {
+    const int B = res.batches, nc = res.channels, orders = res.orders;
     res.energy = batch_mean(res.energy_batches, B);
     res.energy_stderr = batch_stderr(res.energy_batches, B);
-    if (transmits_) {
-        res.transmitted_batches = per_batch(transmitted_);
+    if (transmits) {
         res.transmitted = batch_mean(res.transmitted_batches, B);
         res.transmitted_stderr = batch_stderr(res.transmitted_batches, B);
     }
     // The ledger, its batches and its errors; unaccounted closes each batch.
-    EnergyLedger all;
-    all.reflected = per_batch(reflected_);
-    if (transmits_) all.transmitted = per_batch(through_);
-    all.absorbed = per_batch(absorbed_), all.capped = per_batch(capped_);
-    all.lost = per_batch(lost_);
+    EnergyLedger& all = res.ledger_batches;
     all.unaccounted.assign(size_t(B) * nc, 1.0);
     for (int b = 0; b < B; ++b)
         for (int k = 0; k < nc; ++k) {
             double& u = all.unaccounted[size_t(b) * nc + k];
-            for (int order = 0; order < orders_; ++order) {
-                u -= all.reflected[(size_t(b) * orders_ + order) * nc + k];
-                if (transmits_) u -= all.transmitted[(size_t(b) * orders_ + order) * nc + k];
+            for (int order = 0; order < orders; ++order) {
+                u -= all.reflected[(size_t(b) * orders + order) * nc + k];
+                if (transmits) u -= all.transmitted[(size_t(b) * orders + order) * nc + k];
             }
             u -= all.absorbed[size_t(b) * nc + k] + all.capped[size_t(b) * nc + k] +
                  all.lost[size_t(b) * nc + k];
@@ -95,8 +102,6 @@ TraceResult BatchTally::finish() const {
         res.ledger.*entry = batch_mean(v, B);
         res.ledger_stderr.*entry = batch_stderr(v, B);
     }
-    res.ledger_batches = std::move(all);
-    return res;
 }
 
 } // namespace gonio

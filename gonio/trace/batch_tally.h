@@ -28,6 +28,10 @@ class BatchTally {
     void merge(int b, const BlockOutput& o, long long rays);
     // The batches' means and standard errors, each batch divided by its own ray count.
     TraceResult finish() const;
+    // The means, errors and the ledger's closing from the batches' own estimates (energy_batches,
+    // transmitted_batches, ledger_batches of `res`, unaccounted excepted): what finish() does
+    // after dividing the sums.
+    static void complete(TraceResult& res, bool transmits);
 
   private:
     int batches_, orders_, cells_, nc_;

@@ -27,6 +27,7 @@ TraceResult run_batched(const TraceSettings& st, long long per_batch, BatchTally
     const long long batch_blocks = (per_batch + per_block - 1) / per_block;
     const long long round_blocks = B * batch_blocks, round_rays = B * per_batch;
     const AccuracyTarget& target = st.target;
+    const int shards = std::max(1, st.batch_shard_count), shard = st.batch_shard_index;
     const long long max_rounds =
         target.active() ? std::max(1LL, target.max_rays / std::max(1LL, round_rays)) : 1;
     long long done = 0, next = 1;
@@ -37,12 +38,14 @@ TraceResult run_batched(const TraceSettings& st, long long per_batch, BatchTally
             (next - done) * round_blocks,
             [&](long long b, BlockOutput& o) {
                 const long long id = first_block + b, k = id % batch_blocks;
+                if ((id / batch_blocks) % B % shards != shard) return; // another shard's batch
                 trace(id, k * per_block, std::min(per_batch, (k + 1) * per_block), o);
             },
             [&](const BlockOutput& o) {
                 const long long id = merged++, k = id % batch_blocks;
                 const long long rays = std::min(per_batch, (k + 1) * per_block) - k * per_block;
-                tally.merge(int((id / batch_blocks) % B), o, rays);
+                const int batch = int((id / batch_blocks) % B);
+                if (batch % shards == shard) tally.merge(batch, o, rays);
             });
         done = next;
         TraceResult res = tally.finish();

@@ -2,7 +2,9 @@
 
 #include "gonio/trace/batched_run.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace gonio {
 
@@ -132,6 +134,43 @@ TraceResult trace_incidence(const Scene& scene, const std::vector<const Material
             (res.*ledger).*entry = concat([ ledger, entry ](const TraceResult& p) -> const auto& {
                 return (p.*ledger).*entry;
             });
+    return res;
+}
+
+} // namespace gonio
+
+namespace gonio {
+
+TraceResult combine_batch_shards(const std::vector<TraceResult>& parts) {
+    if (parts.empty()) throw std::invalid_argument("combine_batch_shards: no parts");
+    TraceResult res = parts[0];
+    const size_t n = parts.size();
+    const int B = res.batches;
+    res.rays = 0, res.segments = 0, res.seconds = 0;
+    for (const TraceResult& p : parts) {
+        if (p.batches != B || p.energy_batches.size() != res.energy_batches.size())
+            throw std::invalid_argument("combine_batch_shards: parts of different traces");
+        res.rays += p.rays, res.segments += p.segments;
+        res.seconds = std::max(res.seconds, p.seconds);
+    }
+    // Batch b from the part that traced it.
+    auto take = [&](auto get) {
+        std::vector<double>& out = get(res);
+        if (out.empty()) return;
+        const size_t per = out.size() / size_t(B);
+        for (int b = 0; b < B; ++b) {
+            const std::vector<double>& from = get(const_cast<TraceResult&>(parts[size_t(b) % n]));
+            std::copy(from.begin() + long(size_t(b) * per),
+                      from.begin() + long(size_t(b + 1) * per),
+                      out.begin() + long(size_t(b) * per));
+        }
+    };
+    take([](TraceResult& t) -> std::vector<double>& { return t.energy_batches; });
+    take([](TraceResult& t) -> std::vector<double>& { return t.transmitted_batches; });
+    for (auto entry : {&EnergyLedger::reflected, &EnergyLedger::transmitted,
+                       &EnergyLedger::absorbed, &EnergyLedger::capped, &EnergyLedger::lost})
+        take([entry](TraceResult& t) -> std::vector<double>& { return t.ledger_batches.*entry; });
+    BatchTally::complete(res, !res.transmitted_batches.empty());
     return res;
 }
 

@@ -28,6 +28,9 @@ struct TraceSettings {
     std::uint64_t seed = 1;
     std::uint64_t stream = 0; // distinguishes cases and incidences (mixed into every block's key)
     AccuracyTarget target;    // when active, `rays` is one round and rounds are added
+    // A shard of a single-incidence job traces only the batches b with b mod count = index (the
+    // others stay empty); combine_batch_shards puts the parts back together exactly.
+    int batch_shard_index = 0, batch_shard_count = 1;
 };
 
 // The [trace] table: everything above but the seed, the stream and the block size.
@@ -44,5 +47,10 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
 TraceResult trace_incidence(const Scene& scene, const std::vector<const Material*>& parts,
                             const BeckersSensor& sensor, const Vec3& wi,
                             const TraceSettings& settings);
+
+// The trace of every batch from parts that each traced a share of them (batch b from
+// parts[b mod parts.size()]), with the means and errors recomputed over all: what one process
+// tracing every batch gives, bit for bit.
+TraceResult combine_batch_shards(const std::vector<TraceResult>& parts);
 
 } // namespace gonio
