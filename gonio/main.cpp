@@ -75,8 +75,8 @@ int gonio_main(int argc, char** argv, const gonio::MpiJob& job) {
     run_cmd->add_option("--threads", run.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(0, 1024));
     run_cmd->add_option("--shard", run.shard,
-                        "i/N: trace only shard i of N into a part file for gonio merge (default "
-                        "from SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT)");
+                        "i/N: trace only shard i of N into a part file for gonio merge; 'slurm': "
+                        "i and N from SLURM_ARRAY_TASK_ID / SLURM_ARRAY_TASK_COUNT");
     run_cmd->add_flag("--resume", run.resume, "Continue an interrupted run from OUT.checkpoint");
 
     std::vector<std::string> merge_parts;
@@ -89,7 +89,8 @@ int gonio_main(int argc, char** argv, const gonio::MpiJob& job) {
     merge_cmd->add_option("-o,--output", merge_output, "HDF5 result file")->required();
     merge_cmd->add_flag("--overwrite", merge_overwrite, "Replace an existing output file");
     merge_cmd->add_flag("-q,--quiet", merge_quiet, "No table");
-    merge_cmd->add_option("--threads", merge_threads, "Worker threads (default: all cores)");
+    merge_cmd->add_option("--threads", merge_threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(0, 1024));
 
     gonio::NdfOptions ndf;
     CLI::App* ndf_cmd = app.add_subcommand(

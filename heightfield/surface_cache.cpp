@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -86,7 +87,7 @@ long long cache_size_limit() {
                          : unit == "M" || unit == "MB" ? 1e6
                          : unit == "G" || unit == "GB" ? 1e9
                                                        : -1;
-    if (end == v || scale < 0 || !(x >= 0))
+    if (end == v || scale < 0 || !(x >= 0) || !std::isfinite(x) || x * scale > 9e18)
         throw std::invalid_argument(std::string("GONIO_CACHE_MAX=") + v +
                                     ": expected a size in bytes, optionally with K, M or G");
     return static_cast<long long>(x * scale);

@@ -16,5 +16,5 @@ stem=$2
 export GONIO_CACHE_DIR=${GONIO_CACHE_DIR:-$PWD/gonio-cache}
 # HDF5's file locks fail on some network filesystems (NFS without lockd, Lustre without flock):
 export HDF5_USE_FILE_LOCKING=${HDF5_USE_FILE_LOCKING:-FALSE}
-build/gonio run "$config" -q --threads "${SLURM_CPUS_PER_TASK:-0}" \
+build/gonio run "$config" -q --shard slurm --threads "${SLURM_CPUS_PER_TASK:-0}" \
     -o "$stem.part-${SLURM_ARRAY_TASK_ID}.h5"

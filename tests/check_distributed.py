@@ -102,7 +102,10 @@ def main():
         run([gonio, "merge", "p0.h5", "p1.h5", "p2.h5", "-o", "merged.h5", "-q"], tmp)
         same(os.path.join(tmp, "ref.h5"), os.path.join(tmp, "merged.h5"), "shards 0/3 1/3 2/3")
         env = dict(os.environ, SLURM_ARRAY_TASK_ID="1", SLURM_ARRAY_TASK_COUNT="3")
-        run(base + ["-o", "slurm1.h5", "--cache-dir", "cache"], tmp, env=env)
+        run(base + ["-o", "slurm1.h5", "--cache-dir", "cache", "--shard", "slurm"], tmp, env=env)
+        # Without --shard slurm an array task runs whole (arrays over configs are common).
+        run(base + ["-o", "whole_in_array.h5", "--cache-dir", "cache"], tmp, env=env)
+        same(os.path.join(tmp, "ref.h5"), os.path.join(tmp, "whole_in_array.h5"), "a run inside an array task")
         with h5py.File(os.path.join(tmp, "slurm1.h5")) as f, h5py.File(os.path.join(tmp, "p1.h5")) as g:
             assert f.attrs["shard"] == "1/3" and sorted(f) == sorted(g)
         # Merge refuses a missing, a duplicated and a foreign part, and writes nothing.

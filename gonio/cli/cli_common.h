@@ -27,6 +27,7 @@ inline int worker_threads(int threads) {
 // --no-cache disables the surface cache; --cache-dir overrides the default directory.
 inline SurfaceCache surface_cache(bool no_cache, const std::string& cache_dir) {
     if (no_cache) return SurfaceCache(std::string());
+    cache_size_limit(); // a bad GONIO_CACHE_MAX fails now, not after a surface was made
     return SurfaceCache(cache_dir.empty() ? default_cache_directory() : cache_dir);
 }
 

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
+#include <vector>
 
 namespace gonio {
 
@@ -33,7 +34,13 @@ int run_render_command(const RenderOptions& o) {
     if (o.output.size() <= ext.size() || o.output.compare(o.output.size() - 4, 4, ext) != 0)
         throw RenderArgumentError("-o " + o.output + ": the output must be a .png file");
     const std::string stem = o.output.substr(0, o.output.size() - 4);
-    for (const std::string& p : {o.output, stem + ".exr"})
+    std::vector<std::string> outputs{o.output, stem + ".exr"};
+    if (!o.compare.empty())
+        for (const char* suffix : {"_l1.png", "_l1.exr", "_de00.png"})
+            outputs.push_back(stem + suffix);
+    if (o.compare == "model")
+        for (const char* suffix : {"_model.png", "_model.exr"}) outputs.push_back(stem + suffix);
+    for (const std::string& p : outputs)
         if (!o.overwrite && std::filesystem::exists(p))
             throw RenderArgumentError(p + ": exists; pass --overwrite to replace it");
     const auto limit = limit_threads(o.threads);
@@ -41,6 +48,9 @@ int run_render_command(const RenderOptions& o) {
     if (!c.simulated)
         throw RenderArgumentError(o.input + ": case " + c.name +
                                   " holds models only (gonio model): nothing simulated to render");
+    if (o.compare == "model" && !c.has("model_l1"))
+        throw RenderArgumentError(o.input + ": case " + c.name +
+                                  " has no Model L1 (model.models) to compare with");
     const Environment env = o.env == "uniform" ? Environment::uniform(1.0)
                             : o.env == "sky"   ? Environment::overcast_sky()
                                                : Environment::from_exr(o.env);

@@ -276,7 +276,16 @@ int run_run_command(const RunOptions& o) {
         o.output.empty() ? std::filesystem::path(o.config).stem().string() + ".h5" : o.output;
     install_stop_handlers();
     if (mpi_job().active()) return run_mpi(cfg, o, output, run, start);
-    const Shard shard = o.shard.empty() ? shard_from_environment() : parse_shard(o.shard);
+    if (o.shard == "slurm" && !shard_from_environment().active())
+        throw std::runtime_error(
+            "--shard slurm: SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT are "
+            "not set (not a task of a Slurm job array)");
+    const Shard shard = o.shard.empty()      ? Shard{}
+                        : o.shard == "slurm" ? shard_from_environment()
+                                             : parse_shard(o.shard);
+    if (shard.active() && o.resume)
+        throw std::runtime_error("--resume with --shard: a shard keeps no checkpoint; run the "
+                                 "shard again");
     try {
         if (shard.active()) return run_shard(cfg, o, shard, output);
 
@@ -312,19 +321,34 @@ int run_run_command(const RunOptions& o) {
                             header.units_total);
         }
         UnitFileWriter ckpt(checkpoint, header, resuming);
+        long long added = 0;
         auto traced = [&](size_t ci, size_t ti, size_t pi, const UnitTraces& u) {
             const size_t np = cfg.cases[ci].phi_i_deg.size();
             ckpt.add({first[ci] + (long long)(ti * np + pi), ci, ti, pi, u});
+            ++added;
         };
-        const int code = assemble_and_write(cfg, o, output, done, traced, run, start, 1, 0);
+        int code = 0;
+        try {
+            code = assemble_and_write(cfg, o, output, done, traced, run, start, 1, 0);
+        } catch (const Interrupted&) {
+            throw;
+        } catch (...) { // a failure before any incidence leaves no checkpoint to trip over
+            ckpt.close();
+            if (added == 0 && !resuming) std::filesystem::remove(checkpoint);
+            throw;
+        }
         ckpt.close();
         std::filesystem::remove(checkpoint);
         return code;
     } catch (const Interrupted&) {
-        std::fprintf(stderr,
-                     "gonio: interrupted; the finished incidences are in %s.checkpoint: `gonio run "
-                     "... --resume` continues the run\n",
-                     output.c_str());
+        if (shard.active())
+            std::fprintf(stderr, "gonio: interrupted; shard %s wrote nothing (run it again)\n",
+                         shard.text().c_str());
+        else
+            std::fprintf(stderr,
+                         "gonio: interrupted; the finished incidences are in %s.checkpoint: `gonio "
+                         "run ... --resume` continues the run\n",
+                         output.c_str());
         return 130;
     }
 }
@@ -347,6 +371,10 @@ int run_merge_command(const std::vector<std::string>& parts, const std::string& 
                                      why + ")");
         if (h.by_batches) { // a single-incidence job: the parts hold shares of the batches
             const Shard sh = parse_shard(h.shard);
+            if (batch_count != 0 && sh.count != batch_count)
+                throw std::runtime_error(parts[k] + ": shard " + sh.text() + " of a split into " +
+                                         std::to_string(sh.count) + ", the others into " +
+                                         std::to_string(batch_count));
             batch_count = sh.count;
             const auto [it, fresh] =
                 batch_parts.emplace(sh.index, std::make_pair(parts[k], StoredUnit{}));

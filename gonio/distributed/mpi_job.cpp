@@ -22,7 +22,8 @@ bool launched_by_mpi() {
 MpiJob mpi_start(int* argc, char*** argv) {
 #ifdef GONIO_WITH_MPI
     if (launched_by_mpi()) {
-        MPI_Init(argc, argv);
+        int provided = 0; // only the main thread calls MPI (TBB's workers never do)
+        MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
         started = true;
         MPI_Comm_rank(MPI_COMM_WORLD, &job.rank);
         MPI_Comm_size(MPI_COMM_WORLD, &job.size);
@@ -69,7 +70,7 @@ void mpi_send_units(const std::vector<StoredUnit>& units) {
                                 (long long)u.phi_index};
         MPI_Send(h, 4, MPI_LONG_LONG, 0, kHeader, MPI_COMM_WORLD);
         const std::vector<char> bytes = serialise(u.traces);
-        if (bytes.size() > size_t(1) << 31) throw std::runtime_error("a unit over 2 GB");
+        if (bytes.size() >= (size_t(1) << 31)) throw std::runtime_error("a unit of 2 GB or more");
         MPI_Send(bytes.data(), int(bytes.size()), MPI_BYTE, 0, kBody, MPI_COMM_WORLD);
     }
     const long long end[4] = {-1, 0, 0, 0};

@@ -2,6 +2,7 @@
 
 #include "gonio/io/hdf5_handles.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <stdexcept>
 
@@ -42,8 +43,9 @@ UnitFileWriter::UnitFileWriter(const std::string& path, const UnitFileHeader& h,
     }
     file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
     if (file_ < 0)
-        throw std::runtime_error(path +
-                                 ": cannot create (is another gonio writing the same output?)");
+        throw std::runtime_error(
+            path +
+            ": cannot create (an unwritable directory, or another gonio writing the same output)");
     const hid_t f = hid_t(file_);
     h5::write_string_attribute(f, "file_format", kFormat);
     h5::write_string_attribute(f, "gonio_version", h.version);
@@ -76,8 +78,13 @@ void UnitFileWriter::add(const StoredUnit& u) {
     h5::Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose, "dataspace");
     if (H5Lexists(hid_t(file_), name.c_str(), H5P_DEFAULT) > 0)
         H5Ldelete(hid_t(file_), name.c_str(), H5P_DEFAULT); // a unit redone after a kill
-    h5::Handle d(H5Dcreate2(hid_t(file_), name.c_str(), H5T_NATIVE_UINT8, space, H5P_DEFAULT,
-                            H5P_DEFAULT, H5P_DEFAULT),
+    // Deflated in chunks: the batches' histograms are mostly zeros beyond the first orders.
+    h5::Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "dataset creation property list");
+    const hsize_t chunk = std::min<hsize_t>(n, hsize_t(1) << 20);
+    h5::check(H5Pset_chunk(dcpl, 1, &chunk), "H5Pset_chunk");
+    h5::check(H5Pset_deflate(dcpl, 1), "H5Pset_deflate");
+    h5::Handle d(H5Dcreate2(hid_t(file_), name.c_str(), H5T_NATIVE_UINT8, space, H5P_DEFAULT, dcpl,
+                            H5P_DEFAULT),
                  H5Dclose, ("create " + name).c_str());
     h5::check(H5Dwrite(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()),
               ("write " + name).c_str());
@@ -85,6 +92,7 @@ void UnitFileWriter::add(const StoredUnit& u) {
     write_int(d, "case_index", (long long)u.case_index);
     write_int(d, "theta_index", (long long)u.theta_index);
     write_int(d, "phi_index", (long long)u.phi_index);
+    write_int(d, "complete", 1); // last: a unit cut short by a kill is skipped on reading
     h5::check(H5Fflush(hid_t(file_), H5F_SCOPE_GLOBAL), "flush");
 }
 
@@ -121,6 +129,7 @@ std::vector<StoredUnit> read_unit_file(const std::string& path, UnitFileHeader* 
                            H5P_DEFAULT);
         if (name.rfind("unit_", 0) != 0) continue;
         h5::Handle d(H5Dopen2(f, name.c_str(), H5P_DEFAULT), H5Dclose, name.c_str());
+        if (H5Aexists(d, "complete") <= 0) continue; // written when the process was killed
         h5::Handle space(H5Dget_space(d), H5Sclose, "dataspace");
         hsize_t n = 0;
         H5Sget_simple_extent_dims(space, &n, nullptr);

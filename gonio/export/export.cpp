@@ -48,11 +48,13 @@ BsdfTable load_table(const ResultCase& c, TableOrder order, const std::string& f
         throw ExportRefused(c.file + ": case " + c.name +
                             " holds models only (gonio model): no simulated orders to export to " +
                             format);
+    if (order == TableOrder::transmission && !c.transmits)
+        throw ExportRefused(c.file + ": case " + c.name + " (" + c.material +
+                            ") transmits nothing: it has no lower sensor");
+    TableData d = table_data(c, order); // an unreadable file is an error, not a refusal
     try {
-        return BsdfTable(table_data(c, order));
+        return BsdfTable(std::move(d));
     } catch (const std::invalid_argument& e) {
-        throw ExportRefused(std::string(e.what()));
-    } catch (const std::runtime_error& e) {
         throw ExportRefused(std::string(e.what()));
     }
 }

@@ -101,6 +101,18 @@ CaseResult simulate_ensemble(const CaseConfig& c, const CaseRunSettings& s, cons
         }
     }
     std::unique_ptr<CaseModels> models;
+    // Each incidence traced here, handed on whole (its surfaces and how its target ended) as soon
+    // as its last pass is over: a checkpoint then holds it.
+    auto hand_on = [&] {
+        if (members.empty()) return;
+        for (size_t i = 0; i < n; ++i)
+            if (states[i].done && !members[i].empty()) {
+                const State& st = states[i];
+                plan->traced(i / np, i % np,
+                             {std::move(members[i]), st.stop, st.passes, st.error, first_surface});
+                members[i].clear();
+            }
+    };
     const auto start = Clock::now();
     for (;;) {
         int needed = 0;
@@ -194,15 +206,9 @@ CaseResult simulate_ensemble(const CaseConfig& c, const CaseRunSettings& s, cons
             }
             st.wanted = want;
         }
+        hand_on(); // the incidences this pass finished
     }
-    // Each incidence traced here, handed on whole (its surfaces and how its target ended).
-    if (!members.empty())
-        for (size_t i = 0; i < n; ++i)
-            if (!members[i].empty()) {
-                const State& st = states[i];
-                plan->traced(i / np, i % np,
-                             {std::move(members[i]), st.stop, st.passes, st.error, first_surface});
-            }
+    hand_on();
     if (trace_only) return result;
     if (!models) { // every incidence came traced
         HeightField surface;

@@ -17,6 +17,8 @@ Environment::Environment(Image map) : map_(std::move(map)) {
         double row = 0;
         for (int x = 0; x < w; ++x) {
             const float* c = map_.at(x, y);
+            if (!std::isfinite(c[0] + c[1] + c[2]))
+                throw std::invalid_argument("Environment: a texel is not a finite number");
             const double lum = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
             // A floor keeps every texel reachable, so the pdf is positive wherever eval is.
             texel_p_[size_t(y) * w + x] = (std::max(lum, 0.0) + 1e-6) * sin_theta;

@@ -35,6 +35,7 @@ void write_png(const Image& image, const std::string& path) {
     const std::string tmp = temporary(path);
     FILE* f = std::fopen(tmp.c_str(), "wb");
     if (!f) throw std::runtime_error(path + ": cannot create");
+    std::vector<png_byte> row(size_t(image.width) * 3); // before setjmp: no destructor skipped
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
     png_infop info = png ? png_create_info_struct(png) : nullptr;
     if (!png || !info || setjmp(png_jmpbuf(png))) {
@@ -49,7 +50,6 @@ void write_png(const Image& image, const std::string& path) {
                  PNG_FILTER_TYPE_DEFAULT);
     png_set_sRGB(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(png, info);
-    std::vector<png_byte> row(size_t(image.width) * 3);
     for (int y = 0; y < image.height; ++y) {
         for (int x = 0; x < image.width; ++x)
             for (int c = 0; c < 3; ++c)
@@ -98,15 +98,26 @@ Image read_exr_rgb(const std::string& path) {
         if (!rgb && !in.header().channels().findChannel("Y"))
             throw std::runtime_error("no R, G, B or Y channel");
         Imf::FrameBuffer fb;
-        const size_t xs = 3 * sizeof(float), ys = xs * size_t(w);
-        char* base = reinterpret_cast<char*>(img.rgb.data()) -
-                     (size_t(dw.min.x) + size_t(dw.min.y) * size_t(w)) * xs;
-        const char* names[3] = {"R", "G", "B"};
-        for (int c = 0; c < 3; ++c)
-            fb.insert(rgb ? names[c] : "Y",
-                      Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys, 1, 1, 0.0));
+        const long offset = long(dw.min.x) + long(dw.min.y) * long(w);
+        std::vector<float> grey;
+        if (rgb) {
+            const size_t xs = 3 * sizeof(float), ys = xs * size_t(w);
+            char* base = reinterpret_cast<char*>(img.rgb.data()) - offset * long(xs);
+            const char* names[3] = {"R", "G", "B"};
+            for (int c = 0; c < 3; ++c)
+                fb.insert(names[c],
+                          Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xs, ys, 1, 1, 0.0));
+        } else { // one grey channel, repeated
+            grey.assign(size_t(w) * size_t(h), 0.0f);
+            char* base = reinterpret_cast<char*>(grey.data()) - offset * long(sizeof(float));
+            fb.insert("Y", Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * size_t(w)));
+        }
         in.setFrameBuffer(fb);
         in.readPixels(dw.min.y, dw.max.y);
+        for (size_t k = 0; k < grey.size(); ++k)
+            for (int c = 0; c < 3; ++c) img.rgb[3 * k + size_t(c)] = grey[k];
+        for (float v : img.rgb)
+            if (!std::isfinite(v)) throw std::runtime_error("a texel is not a finite number");
         return img;
     } catch (const std::exception& e) {
         throw std::runtime_error(path + ": not a readable OpenEXR image (" + e.what() + ")");
