@@ -320,7 +320,9 @@ int run_run_command(const RunOptions& o) {
                 std::printf("resuming %s: %lld of %lld incidences done\n", checkpoint.c_str(), n,
                             header.units_total);
         }
+        const auto opened = PhaseTimes::Clock::now();
         UnitFileWriter ckpt(checkpoint, header, resuming);
+        run.add_since("checkpoint", opened);
         long long added = 0;
         auto traced = [&](size_t ci, size_t ti, size_t pi, const UnitTraces& u) {
             const size_t np = cfg.cases[ci].phi_i_deg.size();

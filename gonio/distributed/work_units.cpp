@@ -38,6 +38,7 @@ struct Writer {
     }
     void put(const std::vector<double>& v) {
         put(std::uint64_t(v.size()));
+        if (v.empty()) return; // its data() may be null
         const char* p = reinterpret_cast<const char*>(v.data());
         out.insert(out.end(), p, p + v.size() * sizeof(double));
     }
@@ -66,7 +67,7 @@ struct Reader {
         get(n);
         need(n * sizeof(double));
         v.resize(n);
-        std::memcpy(v.data(), in.data() + at, n * sizeof(double));
+        if (n > 0) std::memcpy(v.data(), in.data() + at, n * sizeof(double)); // (null when empty)
         at += n * sizeof(double);
     }
 };

@@ -105,6 +105,7 @@ CaseResult simulate_ensemble(const CaseConfig& c, const CaseRunSettings& s, cons
     // as its last pass is over: a checkpoint then holds it.
     auto hand_on = [&] {
         if (members.empty()) return;
+        const auto t0 = Clock::now();
         for (size_t i = 0; i < n; ++i)
             if (states[i].done && !members[i].empty()) {
                 const State& st = states[i];
@@ -112,6 +113,7 @@ CaseResult simulate_ensemble(const CaseConfig& c, const CaseRunSettings& s, cons
                              {std::move(members[i]), st.stop, st.passes, st.error, first_surface});
                 members[i].clear();
             }
+        result.phases.add_since("checkpoint", t0);
     };
     const auto start = Clock::now();
     for (;;) {
@@ -302,7 +304,7 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
     sim.surface = !to_trace                      ? given_surface
                   : result.surface_origin.loaded ? c.surface.input
                                                  : result.surface_origin.cache_path;
-    double trace_seconds = 0, incidence_seconds = 0;
+    double trace_seconds = 0, incidence_seconds = 0, handed_seconds = 0;
     for (size_t ti = 0; ti < c.theta_i_deg.size(); ++ti)
         for (size_t pi = 0; pi < c.phi_i_deg.size(); ++pi) {
             const UnitTraces* given = done_before(plan, ti, pi);
@@ -318,8 +320,11 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
             const TraceResult r = given ? given->members.at(0)
                                         : trace_incidence(*scene, parts, *result.sensor, wi, st);
             trace_seconds += std::chrono::duration<double>(Clock::now() - start).count();
-            if (!given && plan && plan->traced)
+            if (!given && plan && plan->traced) {
+                const auto t0 = Clock::now(); // the checkpoint's own phase, not the comparison's
                 plan->traced(ti, pi, {{r}, r.stop, 1, -1, sim.surface});
+                handed_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+            }
             if (trace_only) continue;
             CaseModels& models = *models_owner;
             // The models' V-cavity paths draw from their own streams (key "VCAVITY").
@@ -334,6 +339,7 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
                 o.finished(
                     {ti, pi, c.theta_i_deg[ti], c.phi_i_deg[pi], &r, &sim, &comparisons, &albedos});
         }
+    if (handed_seconds > 0) result.phases.add("checkpoint", handed_seconds);
     if (trace_only) return result;
     result.models = models_owner->results();
     result.phases.add("trace", trace_seconds);
@@ -341,7 +347,8 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
     double model_seconds = 0;
     for (const ModelResult& m : result.models)
         for (double x : m.seconds.data) model_seconds += x;
-    result.phases.add("compare", incidence_seconds - trace_seconds - model_seconds);
+    result.phases.add("compare",
+                      incidence_seconds - trace_seconds - model_seconds - handed_seconds);
     return result;
 }
 
