@@ -1,17 +1,33 @@
-// Ray-tracing benchmark (issue 4): on one 1024^2 Beckmann alpha = 0.75 surface, the full
-// gonioreflectometer pipeline (beam, periodic wrapping, float-aware origins, perfect-mirror
-// bounces, binning, ledger) against bare rtcIntersect1 calls on exactly the segments the pipeline
-// gives Embree (all bounces and wraps, recorded). Segments per second, single- and two-threaded,
-// and the ratio (best of three runs each). Not a test: numbers depend on the machine.
+// Ray-tracing benchmark (issues 4 and 19): the two trace backends on the same rays.
 //
-// Usage: trace_bench [size=1024] [rays=2097152] [theta_i_deg=60] [threads=both|1|2]
+// speed (default): the whole gonioreflectometer pipeline (beam, periodic wrapping, origins,
+// perfect-mirror bounces, binning, ledger) on Beckmann alpha = 0.75 surfaces, 256^2, 1024^2 and
+// 4096^2, theta_i 0, 60, 85 and 89.9 deg, 1 and 2 threads, with the Embree backend and the
+// height-field traversal: the same random streams, so the same beam rays. Beam rays per second,
+// segments per second (a segment: one straight piece of a ray between bounces and walls), the
+// memory of each acceleration structure, and the speed-up (best of `repeats` runs each,
+// alternating). The last line is the 1024^2, theta_i 60 deg, 2-thread speed-up.
+//
+// hits: hit for hit. The segments the Embree pipeline gives Embree (every bounce and wrap,
+// recorded) replayed through both backends; each segment's first hit compared (same triangle,
+// t within 1e-5 relative), mismatches counted and the first ones printed. Beckmann and GGX,
+// alpha 0.1 to 2, theta_i 0 to 89.9 deg, 64^2 to 4096^2.
+//
+// Not a test: the speeds depend on the machine. --quick runs a small version of either (CTest).
+//
+// Usage: trace_bench [speed|hits] [--quick] [--rays N] [--repeats R] [--size N] [--theta DEG]
+#include "gonio/trace/backend_comparison.h"
 #include "gonio/trace/gonioreflectometer.h"
 #include "heightfield/generate.h"
 #include "heightfield/ndf/beckmann.h"
+#include "heightfield/ndf/ggx.h"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <memory>
 #include <string>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
@@ -21,62 +37,222 @@
 using namespace gonio;
 using Clock = std::chrono::steady_clock;
 
-static double seconds_since(Clock::time_point t0) {
+namespace {
+double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-int main(int argc, char** argv) {
-    const int n = argc > 1 ? std::atoi(argv[1]) : 1024;
-    const long long rays = argc > 2 ? std::atoll(argv[2]) : 2097152;
-    const double theta = argc > 3 ? std::atof(argv[3]) : 60.0;
-    const std::string only = argc > 4 ? argv[4] : "both"; // one thread count, e.g. for perf
+HeightField surface_of(const Ndf& ndf, int n) {
     SurfaceSpec spec;
     spec.size = n;
-    const HeightField surface = generate_surface(Beckmann(0.75), spec, 2);
-    Scene scene(surface);
-    const BeckersSensor sensor(3240);
-    const SpecularReflector mirror(FresnelTerm::mirror());
-    const Vec3 wi = spherical_direction(radians(theta), 0.0);
+    spec.iterations = 100; // the slopes' distribution is what matters for tracing, not its last %
+    return generate_surface(ndf, spec, 2);
+}
 
-    // The bare calls replay exactly the segments the pipeline gives Embree (recorded in one
-    // single-threaded run; the pipeline is deterministic), with nothing else around them.
-    TraceSettings st;
-    st.rays = rays;
-    std::vector<float> segments;
+struct Rate {
+    double rays_per_s = 0, segments_per_s = 0;
+    long long segments = 0;
+};
+
+// The backends alone (one bare call per segment) on the segments the Embree pipeline traced.
+void bare_rates(Scene& embree, const Scene& walk, const Material& material,
+                const BeckersSensor& sensor, const Vec3& wi, const TraceSettings& st, int threads,
+                int repeats) {
+    std::vector<float> segs;
     {
         tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-        scene.record_segments(&segments);
-        trace_incidence(scene, mirror, sensor, wi, st);
-        scene.record_segments(nullptr);
+        embree.record_segments(&segs);
+        trace_incidence(embree, material, sensor, wi, st);
+        embree.record_segments(nullptr);
     }
-    const size_t count = segments.size() / 6;
-    std::printf("Beckmann alpha = 0.75, %d^2 surface, theta_i = %g deg, %lld beam rays, %zu "
-                "segments\n",
-                n, theta, (long long)std::llround(std::pow(std::ceil(std::sqrt(double(rays))), 2)),
-                count);
-    std::printf("%8s %16s %16s %8s\n", "threads", "pipeline_Mseg/s", "bare_Mseg/s", "ratio");
-    for (int threads : {1, 2}) {
-        if (only != "both" && only != std::to_string(threads)) continue;
-        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-        // Best of three, alternating, so that both see the same machine state.
-        double pipeline = 0, bare = 0;
-        for (int repeat = 0; repeat < 3; ++repeat) {
-            auto t0 = Clock::now();
-            const TraceResult r = trace_incidence(scene, mirror, sensor, wi, st);
-            pipeline = std::max(pipeline, double(r.segments) / seconds_since(t0));
-            if (size_t(r.segments) != count) std::printf("warning: %lld segments\n", r.segments);
-            t0 = Clock::now();
-            std::vector<float> sink(count);
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    const size_t count = segs.size() / 6;
+    double best[2] = {0, 0};
+    std::vector<double> sink(count);
+    for (int r = 0; r < repeats; ++r)
+        for (int k = 0; k < 2; ++k) {
+            const Scene& s = k == 0 ? embree : walk;
+            const auto t = Clock::now();
             tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096),
                               [&](const tbb::blocked_range<size_t>& b) {
-                                  for (size_t k = b.begin(); k < b.end(); ++k)
-                                      sink[k] =
-                                          scene.intersect(&segments[6 * k], &segments[6 * k + 3]);
+                                  for (size_t i = b.begin(); i < b.end(); ++i)
+                                      sink[i] = s.intersect(&segs[6 * i], &segs[6 * i + 3]).t;
                               });
-            bare = std::max(bare, double(count) / seconds_since(t0));
+            best[k] = std::max(best[k], double(count) / seconds_since(t));
         }
-        std::printf("%8d %16.2f %16.2f %8.2f\n", threads, pipeline / 1e6, bare / 1e6,
-                    pipeline / bare);
+    std::printf("    bare segments, %d thread(s): embree %.3f Mseg/s, heightfield %.3f Mseg/s, "
+                "ratio %.2f\n",
+                threads, best[0] / 1e6, best[1] / 1e6, best[1] / best[0]);
+}
+
+int speed(bool quick, long long rays, int repeats, int only_size, double only_theta, bool bare) {
+    std::vector<int> sizes = quick ? std::vector<int>{256} : std::vector<int>{256, 1024, 4096};
+    std::vector<double> thetas =
+        quick ? std::vector<double>{60} : std::vector<double>{0, 60, 85, 89.9};
+    if (only_size > 0) sizes = {only_size};
+    if (only_theta >= 0) thetas = {only_theta};
+    const BeckersSensor sensor(3240);
+    const SpecularReflector mirror(FresnelTerm::mirror());
+    TraceSettings st;
+    st.rays = rays;
+    std::printf("Beckmann alpha = 0.75, perfect mirror, %lld beam rays per run, best of %d\n",
+                (long long)rays, repeats);
+    std::printf("%6s %6s %7s | %12s %9s | %12s %9s | %7s\n", "size", "theta", "threads",
+                "embree ray/s", "Mseg/s", "hfield ray/s", "Mseg/s", "speedup");
+    double headline = 0;
+    int headline_size = 0;
+    std::vector<std::string> memory;
+    for (int n : sizes) {
+        const HeightField surface = surface_of(Beckmann(0.75), n);
+        auto t0 = Clock::now();
+        Scene embree(surface, TraceBackend::embree);
+        const double embree_build = seconds_since(t0);
+        t0 = Clock::now();
+        const Scene walk(surface, TraceBackend::heightfield);
+        const double walk_build = seconds_since(t0);
+        char line[200];
+        std::snprintf(line, sizeof line, "%6d %14.1f %10.3f %14.1f %10.3f %8.1f %10.1f", n,
+                      embree.memory_bytes() / 1048576.0, embree_build,
+                      walk.memory_bytes() / 1048576.0, walk_build,
+                      double(embree.memory_bytes()) / double(walk.memory_bytes()),
+                      (walk.z_max() - walk.z_min()) / surface.spacing);
+        memory.push_back(line);
+        for (double theta : thetas) {
+            const Vec3 wi = spherical_direction(radians(theta), 0.0);
+            for (int threads : {1, 2}) {
+                tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+                Rate e, h;
+                for (int r = 0; r < repeats; ++r)
+                    for (const Scene* s : {static_cast<const Scene*>(&embree), &walk}) {
+                        const auto t = Clock::now();
+                        const TraceResult res = trace_incidence(*s, mirror, sensor, wi, st);
+                        const double sec = seconds_since(t);
+                        Rate& k = s == &embree ? e : h;
+                        k.rays_per_s = std::max(k.rays_per_s, double(res.rays) / sec);
+                        k.segments_per_s = std::max(k.segments_per_s, double(res.segments) / sec);
+                        k.segments = res.segments;
+                    }
+                if (bare) bare_rates(embree, walk, mirror, sensor, wi, st, threads, repeats);
+                const double speedup = h.rays_per_s / e.rays_per_s;
+                std::printf("%6d %6.1f %7d | %12.0f %9.3f | %12.0f %9.3f | %7.2f\n", n, theta,
+                            threads, e.rays_per_s, e.segments_per_s / 1e6, h.rays_per_s,
+                            h.segments_per_s / 1e6, speedup);
+                std::fflush(stdout);
+                if (threads == 2 && theta == 60 && (n == 1024 || (quick && n == sizes[0])))
+                    headline = speedup, headline_size = n;
+            }
+        }
     }
+    std::printf("\nacceleration structure memory (MiB), build time (s), and the surface's relief "
+                "(z_max - z_min, in samples):\n");
+    std::printf("%6s %14s %10s %14s %10s %8s %10s\n", "size", "embree MiB", "build s", "hfield MiB",
+                "build s", "ratio", "relief");
+    for (const std::string& l : memory) std::printf("%s\n", l.c_str());
+    std::printf(
+        "speedup heightfield/embree (%d\u00b2, \u03b1 0.75, \u03b8i 60\u00b0, 2 threads): %.2f\n",
+        headline_size, headline);
     return 0;
+}
+
+int hits(bool quick, long long rays) {
+    struct Case {
+        const char* ndf;
+        double alpha;
+        int n;
+    };
+    std::vector<Case> cases;
+    const std::vector<int> sizes =
+        quick ? std::vector<int>{64} : std::vector<int>{64, 256, 1024, 4096};
+    const std::vector<double> alphas =
+        quick ? std::vector<double>{0.5} : std::vector<double>{0.1, 0.5, 1.0, 2.0};
+    for (int n : sizes)
+        for (const char* ndf : {"beckmann", "ggx"})
+            for (double a : alphas) cases.push_back({ndf, a, n});
+    const std::vector<double> thetas =
+        quick ? std::vector<double>{60, 89.9} : std::vector<double>{0, 60, 85, 89.9};
+    const BeckersSensor sensor(578);
+    const SpecularReflector mirror(FresnelTerm::mirror());
+    TraceSettings st;
+    st.rays = rays;
+    st.batches = 4;
+    std::printf("%9s %5s %5s %6s %11s %9s %9s %8s %7s %7s %7s %7s %7s %9s\n", "ndf", "alpha",
+                "size", "theta", "segments", "hits", "edge", "missed", "only_e", "only_h", "tri",
+                "t", "e_float", "max_rel_t");
+    BackendComparison all;
+    for (const Case& c : cases) {
+        std::unique_ptr<Ndf> ndf;
+        if (std::strcmp(c.ndf, "ggx") == 0)
+            ndf = std::make_unique<Ggx>(c.alpha);
+        else
+            ndf = std::make_unique<Beckmann>(c.alpha);
+        const HeightField surface = surface_of(*ndf, c.n);
+        Scene embree(surface, TraceBackend::embree);
+        const Scene walk(surface, TraceBackend::heightfield);
+        for (double theta : thetas) {
+            std::vector<float> segments;
+            {
+                tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+                embree.record_segments(&segments);
+                trace_incidence(embree, mirror, sensor, spherical_direction(radians(theta), 0.3),
+                                st);
+                embree.record_segments(nullptr);
+            }
+            const BackendComparison r = compare_backends(embree, walk, segments);
+            std::printf("%9s %5.2f %5d %6.1f %11lld %9lld %9lld %8lld %7lld %7lld %7lld %7lld "
+                        "%7lld %9.2e\n",
+                        c.ndf, c.alpha, c.n, theta, r.segments, r.agree, r.on_shared_edge,
+                        r.both_missed, r.only_reference, r.only_other, r.other_triangle,
+                        r.t_differs, r.reference_rounding, r.max_t_relative);
+            std::fflush(stdout);
+            for (const std::string& e : r.examples) std::printf("    %s\n", e.c_str());
+            all.add(r);
+        }
+    }
+    std::printf("all: %lld segments, %lld mismatches (%.3g of the segments): %lld only Embree hit, "
+                "%lld only the traversal, %lld other triangle, %lld t beyond 1e-5; and %lld where "
+                "Embree's float arithmetic differs from the exact answer (t or a grazed crease; "
+                "the traversal "
+                "agrees with it)\n",
+                all.segments, all.mismatches(), double(all.mismatches()) / double(all.segments),
+                all.only_reference, all.only_other, all.other_triangle, all.t_differs,
+                all.reference_rounding);
+    return 0;
+}
+} // namespace
+
+int main(int argc, char** argv) {
+    std::string mode = "speed";
+    bool quick = false;
+    long long rays = -1;
+    int repeats = 2, only_size = 0;
+    bool bare = false;
+    double only_theta = -1;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--quick")
+            quick = true;
+        else if (a == "--rays" && i + 1 < argc)
+            rays = std::atoll(argv[++i]);
+        else if (a == "--bare")
+            bare = true;
+        else if (a == "--size" && i + 1 < argc)
+            only_size = std::atoi(argv[++i]);
+        else if (a == "--theta" && i + 1 < argc)
+            only_theta = std::atof(argv[++i]);
+        else if (a == "--repeats" && i + 1 < argc)
+            repeats = std::atoi(argv[++i]);
+        else if (a == "speed" || a == "hits")
+            mode = a;
+        else {
+            std::fprintf(stderr, "usage: trace_bench [speed|hits] [--quick] [--rays N] "
+                                 "[--repeats R] [--size N] [--theta DEG]\n");
+            return 2;
+        }
+    }
+    if (mode == "hits") return hits(quick, rays > 0 ? rays : quick ? 1 << 14 : 1 << 17);
+    return speed(quick,
+                 rays > 0 ? rays
+                 : quick  ? 1 << 16
+                          : 1 << 20,
+                 repeats, only_size, only_theta, bare);
 }

@@ -53,7 +53,7 @@ void print_json(const ResultSummary& s) {
     for (const CaseSummary& c : s.cases) {
         json jc = json::object();
         jc["name"] = c.name;
-        for (const char* k : {"ndf", "material", "fresnel", "masking"})
+        for (const char* k : {"ndf", "material", "fresnel", "masking", "trace_backend"})
             jc[k] = attribute(c.attributes, k);
         jc["cells"] = c.cells;
         jc["channels"] = c.channels;
@@ -114,10 +114,12 @@ void print_text(const ResultSummary& s) {
     };
     print_timings("  ", s.timings);
     for (const CaseSummary& c : s.cases) {
-        std::printf("\ncase %s: %s, %s, masking %s, %d cells, %d channel%s", c.name.c_str(),
-                    attribute(c.attributes, "ndf").c_str(),
+        const std::string backend = attribute(c.attributes, "trace_backend");
+        std::printf("\ncase %s: %s, %s, masking %s, traced by %s, %d cells, %d channel%s",
+                    c.name.c_str(), attribute(c.attributes, "ndf").c_str(),
                     attribute(c.attributes, "fresnel").c_str(),
-                    attribute(c.attributes, "masking").c_str(), c.cells, c.channels,
+                    attribute(c.attributes, "masking").c_str(),
+                    backend.empty() ? "embree" : backend.c_str(), c.cells, c.channels,
                     c.channels == 1 ? "" : "s");
         if (!c.wavelength_nm.empty()) {
             std::printf(" (");

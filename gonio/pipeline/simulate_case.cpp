@@ -133,7 +133,7 @@ CaseResult simulate_ensemble(const CaseConfig& c, const CaseRunSettings& s, cons
             const HeightField surface = make_surface(c, realisation(c.surface, r), s, o, result);
             if (r == 0) first_surface = result.surface_origin.cache_path;
             auto t = Clock::now();
-            const Scene scene(surface);
+            const Scene scene(surface, c.trace.backend);
             t = result.phases.add_since("scene", t);
             if (!models && r == 0 && !trace_only) { // a model fitted to a surface takes the first
                 models = std::make_unique<CaseModels>(c, *c.ndf, &surface);
@@ -287,7 +287,7 @@ CaseResult simulate_case(const CaseConfig& c, const CaseRunSettings& s, const Ca
         surface = make_surface(c, c.surface, s, o, result);
     auto t = Clock::now();
     std::unique_ptr<Scene> scene; // one surface per case: sweeps never regenerate it
-    if (to_trace) scene = std::make_unique<Scene>(surface);
+    if (to_trace) scene = std::make_unique<Scene>(surface, c.trace.backend);
     t = result.phases.add_since("scene", t);
     result.sensor = std::make_unique<BeckersSensor>(c.sensor_cells);
     const auto materials = c.material.parts();

@@ -20,6 +20,11 @@ const Key kMaxBounces = Key::integer("max_bounces", {1, 1e6},
                                      "rays still bouncing are cut (ledger: capped); 1 traces L1 "
                                      "only")
                             .fallback(1000.0);
+const Key kBackend = Key::string("backend", {"embree", "heightfield"},
+                                 "what traces the rays: Embree 3 (a BVH over the grid) or the "
+                                 "height-field traversal (the same triangles, walked cell by cell "
+                                 "over a min-max pyramid); the same rays either way")
+                         .fallback(backend_name(kDefaultTraceBackend));
 } // namespace
 
 TraceSettings read_trace(TableReader& r) {
@@ -29,11 +34,12 @@ TraceSettings read_trace(TableReader& r) {
     s.max_bounces = static_cast<int>(r.integer(kMaxBounces));
     s.batches = static_cast<int>(r.integer(kBatches));
     s.target = read_accuracy_target(r, s.rays);
+    s.backend = parse_backend(r.string(kBackend));
     return s;
 }
 
 std::vector<KeyGroup> trace_key_groups() {
-    std::vector<Key> keys{kRays, kBatches, kOrders, kMaxBounces};
+    std::vector<Key> keys{kRays, kBatches, kOrders, kMaxBounces, kBackend};
     for (const Key& k : accuracy_target_keys()) keys.push_back(k);
     return {{"trace", "", "", keys}};
 }

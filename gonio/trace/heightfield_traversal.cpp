@@ -1,0 +1,370 @@
+#include "gonio/trace/heightfield_traversal.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+// The edge functions must be exactly antisymmetric (see the header): no fused multiply-add.
+#pragma GCC optimize("fp-contract=off")
+
+namespace gonio {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A vertex in the ray's sheared frame (Woop et al. 2013, Sec. 3): the ray runs along +z' from the
+// origin, x' and y' are where the vertex lies across it, z' is its distance along it times 1/d_kz.
+struct Projected {
+    double x, y, z;
+};
+inline double edge(const Projected& p, const Projected& q) {
+    return p.x * q.y - p.y * q.x;
+}
+} // namespace
+
+HeightfieldTraversal::HeightfieldTraversal(const HeightField& s) : n_(s.n) {
+    if (s.n < 2) throw std::invalid_argument("HeightfieldTraversal: grid size must be >= 2");
+    const int n = n_, v = n + 1;
+    inv_spacing_ = 1.0 / s.spacing;
+    line_.resize(size_t(v));
+    for (int i = 0; i < v; ++i) line_[size_t(i)] = double(float(i * s.spacing));
+    h_.resize(size_t(v) * size_t(v));
+    float lo = std::numeric_limits<float>::max(), hi = -lo;
+    for (int y = 0; y < v; ++y)
+        for (int x = 0; x < v; ++x) {
+            const float z = s.at(x, y);
+            h_[size_t(y) * size_t(v) + size_t(x)] = z;
+            lo = std::min(lo, z), hi = std::max(hi, z);
+        }
+    const double extent = std::max({period(), std::abs(double(lo)), std::abs(double(hi))});
+    // A float ulp of the coordinates: far above the double rounding of the walk's crossing
+    // times, far below any height difference that matters.
+    pad_ = extent * std::numeric_limits<float>::epsilon();
+    relief_ = double(hi) - double(lo);
+    corner_tolerance_ = extent * 1e-10;
+
+    // Level 1 from the vertices, then each level from the one below; a node at level l covers
+    // cells [i 2^l, min((i + 1) 2^l, n)) and so the vertices up to the far edge.
+    std::vector<std::vector<float>> levels(1); // level 0: the cells themselves
+    level_width_.push_back(n);
+    for (int l = 1;; ++l) {
+        const int w = (n + (1 << l) - 1) >> l;
+        std::vector<float> node(2 * size_t(w) * size_t(w));
+        if (l == 1) {
+            for (int j = 0; j < w; ++j)
+                for (int i = 0; i < w; ++i) {
+                    float a = std::numeric_limits<float>::max(), b = -a;
+                    for (int y = 2 * j; y <= std::min(2 * j + 2, n); ++y)
+                        for (int x = 2 * i; x <= std::min(2 * i + 2, n); ++x) {
+                            const float z = h_[size_t(y) * size_t(v) + size_t(x)];
+                            a = std::min(a, z), b = std::max(b, z);
+                        }
+                    node[2 * (size_t(j) * w + i)] = a, node[2 * (size_t(j) * w + i) + 1] = b;
+                }
+        } else {
+            const std::vector<float>& below = levels.back();
+            const int wb = level_width_.back();
+            for (int j = 0; j < w; ++j)
+                for (int i = 0; i < w; ++i) {
+                    float a = std::numeric_limits<float>::max(), b = -a;
+                    for (int y = 2 * j; y < std::min(2 * j + 2, wb); ++y)
+                        for (int x = 2 * i; x < std::min(2 * i + 2, wb); ++x) {
+                            a = std::min(a, below[2 * (size_t(y) * wb + x)]);
+                            b = std::max(b, below[2 * (size_t(y) * wb + x) + 1]);
+                        }
+                    node[2 * (size_t(j) * w + i)] = a, node[2 * (size_t(j) * w + i) + 1] = b;
+                }
+        }
+        levels.push_back(std::move(node));
+        level_width_.push_back(w);
+        if (w == 1) {
+            top_ = l;
+            break;
+        }
+    }
+    for (const std::vector<float>& l : levels) {
+        level_offset_.push_back(pyramid_.size());
+        pyramid_.insert(pyramid_.end(), l.begin(), l.end());
+    }
+}
+
+std::size_t HeightfieldTraversal::memory_bytes() const {
+    std::size_t bytes = line_.size() * sizeof(double) + h_.size() * sizeof(float);
+    bytes += pyramid_.size() * sizeof(float);
+    return bytes;
+}
+
+double HeightfieldTraversal::height_at(double x, double y) const {
+    const size_t stride = size_t(n_) + 1;
+    return HeightField::triangulated_height(
+        x * inv_spacing_, y * inv_spacing_, n_, nullptr, nullptr,
+        [&](int i, int j) { return h_[size_t(j) * stride + size_t(i)]; });
+}
+
+namespace {
+// The cell of the patch's copy that holds coordinate v, bringing v into the patch by whole
+// periods; `lines` are the n + 1 grid lines. On a grid line, the cell the ray moves into: a ray
+// moving down the axis takes the cell below the line (so v = period stays in the last cell).
+int locate(double& v, double direction, const double* lines, int n, double inv_spacing) {
+    const double period = lines[n];
+    if (direction < 0) { // v in (0, period], lines[i] < v <= lines[i + 1]
+        if (v <= 0 || v > period) {
+            v -= std::floor(v / period) * period;
+            if (v <= 0) v += period;
+            if (v > period) v = period;
+        }
+        int i = std::clamp(int(v * inv_spacing), 0, n - 1);
+        while (i > 0 && v <= lines[i]) --i;
+        while (i < n - 1 && v > lines[i + 1]) ++i;
+        return i;
+    }
+    if (v < 0 || v >= period) { // v in [0, period), lines[i] <= v < lines[i + 1]
+        v -= std::floor(v / period) * period;
+        if (v >= period) v -= period; // rounding of the line above
+        if (v < 0) v = 0;
+    }
+    int i = std::clamp(int(v * inv_spacing), 0, n - 1);
+    while (i > 0 && v < lines[i]) --i;
+    while (i < n - 1 && v >= lines[i + 1]) ++i;
+    return i;
+}
+
+// The cell in [lo, hi] that holds v (an exit point on a node's face), taking, within `tolerance`
+// of a grid line, the cell the ray comes from (the walk then steps on at once).
+int locate_within(double v, double direction, int lo, int hi, const double* lines,
+                  double inv_spacing, double tolerance) {
+    int i = std::clamp(int(v * inv_spacing), lo, hi); // v >= 0 up to rounding: truncation
+    while (i > lo && v < lines[i]) --i;
+    while (i < hi && v >= lines[i + 1]) ++i;
+    if (direction > 0 && i > lo && v - lines[i] < tolerance) --i;
+    if (direction < 0 && i < hi && lines[i + 1] - v < tolerance) ++i;
+    return i;
+}
+} // namespace
+
+TraversalHit HeightfieldTraversal::trace(const Vec3& o, const Vec3& d, double z_top,
+                                         double z_bottom, int max_wraps) const {
+    // The dominant axis becomes z' of the sheared frame; the other two keep the winding.
+    const double ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
+    const int kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+    const double dz = kz == 0 ? d.x : kz == 1 ? d.y : d.z;
+    switch (kz * 2 + (dz < 0)) {
+    case 0:
+        return walk<1, 2, 0>(o, d, z_top, z_bottom, max_wraps);
+    case 1:
+        return walk<2, 1, 0>(o, d, z_top, z_bottom, max_wraps);
+    case 2:
+        return walk<2, 0, 1>(o, d, z_top, z_bottom, max_wraps);
+    case 3:
+        return walk<0, 2, 1>(o, d, z_top, z_bottom, max_wraps);
+    case 4:
+        return walk<0, 1, 2>(o, d, z_top, z_bottom, max_wraps);
+    default:
+        return walk<1, 0, 2>(o, d, z_top, z_bottom, max_wraps);
+    }
+}
+
+template <int KX, int KY, int KZ>
+TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_top, double z_bottom,
+                                        int max_wraps) const {
+    TraversalHit r;
+    const int n = n_;
+    const double* line = line_.data();
+    const float* heights = h_.data();
+    const double period = line[n];
+    const size_t stride = size_t(n) + 1;
+    double ox = o.x, oy = o.y;
+    const double oz = o.z;
+    int cx = locate(ox, d.x, line, n, inv_spacing_);
+    int cy = locate(oy, d.y, line, n, inv_spacing_);
+    const bool move_x = d.x != 0, move_y = d.y != 0;
+    const bool up_x = d.x > 0, up_y = d.y > 0;
+    const double inv_dx = move_x ? 1.0 / d.x : 0.0, inv_dy = move_y ? 1.0 / d.y : 0.0;
+    const double speed_xy = std::max(std::abs(d.x), std::abs(d.y));
+    const double corner_t = speed_xy > 0 ? corner_tolerance_ / speed_xy : 0.0;
+    const double dd[3] = {d.x, d.y, d.z};
+    const double shear_x = dd[KX] / dd[KZ], shear_y = dd[KY] / dd[KZ], shear_z = 1.0 / dd[KZ];
+
+    // The nearest hit at t in [0, best) on the two triangles of cell (i, j), whose copy of the
+    // patch lies (bx, by) away: the triangle, or -1.
+    auto hit_cell = [&](int i, int j, double bx, double by, double& best) {
+        const float* r0 = heights + size_t(j) * stride + size_t(i);
+        const float* r1 = r0 + stride;
+        const double x0 = line[i] + bx - ox, x1 = line[i + 1] + bx - ox;
+        const double y0 = line[j] + by - oy, y1 = line[j + 1] + by - oy;
+        auto project = [&](double x, double y, double z) {
+            const double a[3] = {x, y, z - oz};
+            return Projected{a[KX] - shear_x * a[KZ], a[KY] - shear_y * a[KZ], shear_z * a[KZ]};
+        };
+        const Projected v0 = project(x0, y0, r0[0]), v1 = project(x1, y0, r0[1]);
+        const Projected v2 = project(x1, y1, r1[1]), v3 = project(x0, y1, r1[0]);
+        const double diagonal = edge(v3, v1); // shared: triangle B uses its negation
+        int found = -1;
+        auto test = [&](double u, double v, double w, const Projected& a, const Projected& b,
+                        const Projected& c, int which) {
+            if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return;
+            const double det = u + v + w;
+            if (det == 0) return; // the ray lies in the triangle's plane
+            const double t = (u * a.z + v * b.z + w * c.z) / det;
+            if (t >= 0 && t < best) best = t, found = which;
+        };
+        test(diagonal, edge(v0, v3), edge(v1, v0), v0, v1, v3, 0);
+        test(-diagonal, edge(v2, v1), edge(v3, v2), v2, v3, v1, 1);
+        return found;
+    };
+
+    // The hit on triangle `tri` of cell (i, j), in the copy of the patch (bx, by) away.
+    auto found = [&](int tri, int i, int j, double bx, double by, double best) {
+        const float* r0 = heights + size_t(j) * stride + size_t(i);
+        const float* r1 = r0 + stride;
+        const double sx = line[i + 1] - line[i], sy = line[j + 1] - line[j];
+        // The cross product of the triangle's edges (see heightfield.h for the split).
+        r.normal = tri == 0
+                       ? Vec3{-(double(r0[1]) - r0[0]) * sy, -(double(r1[0]) - r0[0]) * sx, sx * sy}
+                       : Vec3{(double(r1[0]) - r1[1]) * sy, (double(r0[1]) - r1[1]) * sx, sx * sy};
+        r.kind = TraversalHit::hit;
+        r.t = best;
+        // In the hit cell's copy of the patch, then brought into [0, period) (it lies within
+        // rounding of cell (i, j)).
+        Vec3 at{ox - bx + best * d.x, oy - by + best * d.y, oz + best * d.z};
+        if (at.x < 0) at.x += period;
+        if (at.x >= period) at.x -= period;
+        if (at.y < 0) at.y += period;
+        if (at.y >= period) at.y -= period;
+        r.position = at;
+        r.cell_x = i, r.cell_y = j, r.triangle = tri;
+        return r;
+    };
+    // The two cells beside the corner of cell (cx, cy) the ray passes near: tested when the
+    // rounding of the two crossing times could order them wrongly (or step past both).
+    auto near_corner = [&](int cx, int cy, double& best, int& hx, int& hy, double& bx_hit,
+                           double& by_hit) {
+        int tri = -1;
+        for (int side = 0; side < 2; ++side) {
+            int ex = cx, ey = cy;
+            double bx = 0, by = 0;
+            if (side == 0)
+                ex += up_x ? 1 : -1;
+            else
+                ey += up_y ? 1 : -1;
+            if (ex == n) ex = 0, bx = period;
+            if (ex < 0) ex = n - 1, bx = -period;
+            if (ey == n) ey = 0, by = period;
+            if (ey < 0) ey = n - 1, by = -period;
+            const int f = hit_cell(ex, ey, bx, by, best);
+            if (f >= 0) tri = f, hx = ex, hy = ey, bx_hit = bx, by_hit = by;
+        }
+        return tri;
+    };
+
+    double t = 0;
+    int level = 0;
+    // The cells the ray crosses while within the surface's heights: few, and walking them one
+    // by one beats any climbing (measured: 1024^2, theta_i 60 deg); many (grazing rays), and the
+    // pyramid pays once a few cells in a row were clear.
+    const double slab_cells = d.z != 0 ? relief_ * inv_spacing_ * speed_xy / std::abs(d.z) : kInf;
+    const int climb_after = slab_cells <= 64 ? std::numeric_limits<int>::max() : 4;
+    const int ux = up_x ? 1 : 0, uy = up_y ? 1 : 0;
+    const double z_end = d.z > 0 ? kInf : d.z < 0 ? -kInf : oz; // the ray's height at t = inf
+    auto escaped = [&] {
+        r.kind = d.z > 0   ? TraversalHit::escaped_up
+                 : d.z < 0 ? TraversalHit::escaped_down
+                           : TraversalHit::lost;
+        return r;
+    };
+    auto beyond = [&](double z) { return d.z > 0 ? z > z_top : d.z < 0 && z < z_bottom; };
+    // Through a side wall: the next copy of the patch, the origin moved back by a period.
+    auto wrap = [&] {
+        if (cx == n) cx = 0, ox -= period, ++r.wraps;
+        if (cx < 0) cx = n - 1, ox += period, ++r.wraps;
+        if (cy == n) cy = 0, oy -= period, ++r.wraps;
+        if (cy < 0) cy = n - 1, oy += period, ++r.wraps;
+        return r.wraps > max_wraps;
+    };
+    for (;;) {
+        if (level == 0) {
+            // Cell by cell, near the surface: the cell's four corners bound its two triangles.
+            for (int skipped = 0;;) {
+                const double tx = move_x ? (line[cx + ux] - ox) * inv_dx : kInf;
+                const double ty = move_y ? (line[cy + uy] - oy) * inv_dy : kInf;
+                const double t_out = std::min(tx, ty);
+                const float* r0 = heights + size_t(cy) * stride + size_t(cx);
+                const float* r1 = r0 + stride;
+                const float lo = std::min(std::min(r0[0], r0[1]), std::min(r1[0], r1[1]));
+                const float hi = std::max(std::max(r0[0], r0[1]), std::max(r1[0], r1[1]));
+                const double za = oz + t * d.z;
+                const double zb = t_out < kInf ? oz + t_out * d.z : z_end;
+                if (std::max(za, zb) + pad_ >= lo && std::min(za, zb) - pad_ <= hi) {
+                    skipped = 0;
+                    double best = kInf, bx = 0, by = 0;
+                    int hx = cx, hy = cy;
+                    int tri = hit_cell(cx, cy, 0, 0, best);
+                    if (tri < 0 && std::abs(tx - ty) <= corner_t)
+                        tri = near_corner(cx, cy, best, hx, hy, bx, by);
+                    if (tri >= 0) return found(tri, hx, hy, bx, by, best);
+                } else {
+                    ++skipped;
+                }
+                if (!(t_out < kInf)) return escaped();
+                t = std::max(t, t_out);
+                if (beyond(oz + t * d.z)) return escaped();
+                const int old_x = cx, old_y = cy;
+                if (tx <= ty) cx += up_x ? 1 : -1;
+                if (ty <= tx) cy += up_y ? 1 : -1;
+                if (wrap()) {
+                    r.kind = TraversalHit::lost;
+                    return r;
+                }
+                // Clear of the surface for a while: look further ahead from a coarser level.
+                if (skipped >= climb_after && top_ > 0) {
+                    const unsigned changed = unsigned(old_x ^ cx) | unsigned(old_y ^ cy);
+                    const int highest = changed ? 31 - __builtin_clz(changed) : 0;
+                    level = std::max(1, std::min(highest, top_));
+                    break;
+                }
+            }
+            continue;
+        }
+        // A coarse node: skipped whole if the ray's heights across it miss its min-max range.
+        const int x0 = (cx >> level) << level, y0 = (cy >> level) << level;
+        const int x1 = std::min(x0 + (1 << level), n), y1 = std::min(y0 + (1 << level), n);
+        const double tx = move_x ? (line[up_x ? x1 : x0] - ox) * inv_dx : kInf;
+        const double ty = move_y ? (line[up_y ? y1 : y0] - oy) * inv_dy : kInf;
+        const double t_out = std::min(tx, ty);
+        const float* node =
+            pyramid_.data() + level_offset_[size_t(level)] +
+            2 * (size_t(cy >> level) * size_t(level_width_[size_t(level)]) + (cx >> level));
+        const double za = oz + t * d.z;
+        const double zb = t_out < kInf ? oz + t_out * d.z : z_end;
+        if (std::max(za, zb) + pad_ >= node[0] && std::min(za, zb) - pad_ <= node[1]) {
+            --level;
+            continue;
+        }
+        if (!(t_out < kInf)) return escaped();
+        t = std::max(t, t_out);
+        if (beyond(oz + t * d.z)) return escaped();
+        const int old_x = cx, old_y = cy;
+        const bool step_x = tx <= ty, step_y = ty <= tx;
+        if (step_x) cx = up_x ? x1 : x0 - 1;
+        if (step_y) cy = up_y ? y1 : y0 - 1;
+        if (wrap()) {
+            r.kind = TraversalHit::lost;
+            return r;
+        }
+        // Out through one face: where along the other axis.
+        if (!step_y)
+            cy =
+                locate_within(oy + t * d.y, d.y, y0, y1 - 1, line, inv_spacing_, corner_tolerance_);
+        if (!step_x)
+            cx =
+                locate_within(ox + t * d.x, d.x, x0, x1 - 1, line, inv_spacing_, corner_tolerance_);
+        // The highest level whose node the step changed: look at the new node from there (the
+        // nodes above are those the ray was already in, which it overlapped).
+        const unsigned changed = unsigned(old_x ^ cx) | unsigned(old_y ^ cy);
+        const int highest = changed ? 31 - __builtin_clz(changed) : 0;
+        level = std::max(level, std::min(highest, top_));
+    }
+}
+
+} // namespace gonio

@@ -1,0 +1,77 @@
+#pragma once
+// A traversal made for gonio's one surface, the periodic n x n grid of heights: the same two
+// triangles per cell that Embree's grid geometry holds (the same (v0, v1, v3), (v2, v3, v1) split
+// and the same float vertices), walked cell by cell along the ray, with a min-max pyramid over
+// the grid to step over empty space and native wrapping through the side walls.
+//
+// Watertight by construction: every vertex is projected into the ray's sheared frame once per
+// test from the same inputs, and the edge function of a shared edge is computed from the same two
+// projected vertices in both triangles, so it is exactly the negation of itself (IEEE subtraction
+// is antisymmetric; the file is built without FMA contraction so that this holds). Triangles are
+// closed: a ray through a shared edge or vertex (edge function exactly 0) hits every triangle
+// that holds it, so no ray passes between two triangles of a cell or of neighbouring cells.
+// Woop, Benthin, Wald, "Watertight Ray/Triangle Intersection", JCGT 2(1), 2013 (Sec. 3, Fig. 2).
+// Between cells, the walk visits every cell the ray crosses; near a cell corner (where rounding
+// could pick the wrong order of the two crossings) it tests both cells beside the corner.
+#include "core/math.h"
+#include "heightfield/heightfield.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace gonio {
+
+struct TraversalHit {
+    enum Kind { hit, escaped_up, escaped_down, lost } kind = lost;
+    double t = 0;  // along the ray from its origin (hit only)
+    Vec3 position; // o + t d brought into the patch (hit only)
+    Vec3 normal;   // the triangle's geometric normal, unnormalised, facing +z (hit only)
+    int cell_x = -1, cell_y = -1;
+    int triangle = -1; // 0: (v0, v1, v3), 1: (v2, v3, v1), as heightfield.h names them
+    int wraps = 0;     // side walls crossed before the hit or the escape
+};
+
+class HeightfieldTraversal {
+  public:
+    explicit HeightfieldTraversal(const HeightField& surface);
+
+    // Follows the ray from `o` (anywhere: the patch repeats) along `d` to the first triangle it
+    // meets at t >= 0, from either side, crossing the side walls natively (at most max_wraps
+    // times, else kind = lost), or until it passes the plane z_top going up or z_bottom going
+    // down (escaped_up / escaped_down).
+    TraversalHit trace(const Vec3& o, const Vec3& d, double z_top, double z_bottom,
+                       int max_wraps) const;
+
+    // The triangulated surface's height at (x, y), from the traversed vertices.
+    double height_at(double x, double y) const;
+
+    double period() const { return line_[size_t(n_)]; } // as the float vertices place it
+    // Vertex (i, j), i, j in [0, n], as Embree's grid holds it.
+    Vec3 vertex(int i, int j) const {
+        return {line_[size_t(i)], line_[size_t(j)], h_[size_t(j) * (size_t(n_) + 1) + size_t(i)]};
+    }
+    std::size_t memory_bytes() const;
+
+  private:
+    int n_ = 0;
+    double inv_spacing_ = 1;
+    double corner_tolerance_ = 0; // distance to a cell corner below which both sides are tested
+    double pad_ = 0;              // added to every min-max bound (conservative skipping)
+    double relief_ = 0;           // z_max - z_min
+    std::vector<double> line_;    // the n + 1 grid lines, float(i * spacing), as Embree's vertices
+    std::vector<float> h_;        // (n + 1)^2 heights, the last row and column repeating the first
+    // Level l >= 1 of the pyramid: ceil(n / 2^l)^2 nodes of (min, max) heights over their cells'
+    // vertices, row-major, from pyramid_[level_offset_[l]]; level 0 is the cell itself (its four
+    // corners).
+    std::vector<float> pyramid_;
+    std::vector<std::size_t> level_offset_;
+    std::vector<int> level_width_;
+    int top_ = 0; // the level of one node
+
+    // The walk, for one orientation of the ray's sheared frame (kz: the dominant axis).
+    template <int KX, int KY, int KZ>
+    TraversalHit walk(const Vec3& o, const Vec3& d, double z_top, double z_bottom,
+                      int max_wraps) const;
+};
+
+} // namespace gonio
