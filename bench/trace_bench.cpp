@@ -85,7 +85,8 @@ void bare_rates(Scene& embree, const Scene& walk, const Material& material,
                 threads, best[0] / 1e6, best[1] / 1e6, best[1] / best[0]);
 }
 
-int speed(bool quick, long long rays, int repeats, int only_size, double only_theta, bool bare) {
+int speed(bool quick, long long rays, int repeats, int only_size, double only_theta, bool bare,
+          const std::string& only_backend) {
     std::vector<int> sizes = quick ? std::vector<int>{256} : std::vector<int>{256, 1024, 4096};
     std::vector<double> thetas =
         quick ? std::vector<double>{60} : std::vector<double>{0, 60, 85, 89.9};
@@ -124,6 +125,8 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
                 Rate e, h;
                 for (int r = 0; r < repeats; ++r)
                     for (const Scene* s : {static_cast<const Scene*>(&embree), &walk}) {
+                        if (!only_backend.empty() && only_backend != backend_name(s->backend()))
+                            continue;
                         const auto t = Clock::now();
                         const TraceResult res = trace_incidence(*s, mirror, sensor, wi, st);
                         const double sec = seconds_since(t);
@@ -226,6 +229,7 @@ int main(int argc, char** argv) {
     long long rays = -1;
     int repeats = 2, only_size = 0;
     bool bare = false;
+    std::string only_backend; // for profiling one backend
     double only_theta = -1;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -233,6 +237,8 @@ int main(int argc, char** argv) {
             quick = true;
         else if (a == "--rays" && i + 1 < argc)
             rays = std::atoll(argv[++i]);
+        else if (a == "--backend" && i + 1 < argc)
+            only_backend = argv[++i];
         else if (a == "--bare")
             bare = true;
         else if (a == "--size" && i + 1 < argc)
@@ -254,5 +260,5 @@ int main(int argc, char** argv) {
                  rays > 0 ? rays
                  : quick  ? 1 << 16
                           : 1 << 20,
-                 repeats, only_size, only_theta, bare);
+                 repeats, only_size, only_theta, bare, only_backend);
 }

@@ -18,7 +18,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct Projected {
     double x, y, z;
 };
-inline double edge(const Projected& p, const Projected& q) {
+[[gnu::always_inline]] inline double edge(const Projected& p, const Projected& q) {
     return p.x * q.y - p.y * q.x;
 }
 } // namespace
@@ -27,6 +27,7 @@ HeightfieldTraversal::HeightfieldTraversal(const HeightField& s) : n_(s.n) {
     if (s.n < 2) throw std::invalid_argument("HeightfieldTraversal: grid size must be >= 2");
     const int n = n_, v = n + 1;
     inv_spacing_ = 1.0 / s.spacing;
+    spacing_ = s.spacing;
     line_.resize(size_t(v));
     for (int i = 0; i < v; ++i) line_[size_t(i)] = double(float(i * s.spacing));
     h_.resize(size_t(v) * size_t(v));
@@ -87,11 +88,44 @@ HeightfieldTraversal::HeightfieldTraversal(const HeightField& s) : n_(s.n) {
         level_offset_.push_back(pyramid_.size());
         pyramid_.insert(pyramid_.end(), l.begin(), l.end());
     }
+
+    // The dilated blocks: each block's vertices widened by r cells on every side (periodic).
+    for (int k = 0; k < kJumps; ++k) {
+        const int b = 1 << kJumpShift[k];
+        if (n < 4 * b) break;
+        const int w = (n + b - 1) / b;
+        std::vector<float> m(2 * size_t(w) * size_t(w));
+        // Per vertex row, the running (min, max) over x in [x0 - b, x1 + b] for each block.
+        std::vector<float> rows(2 * size_t(w) * size_t(n));
+        for (int y = 0; y < n; ++y)
+            for (int i = 0; i < w; ++i) {
+                float a = std::numeric_limits<float>::max(), c = -a;
+                for (int x = i * b - b; x <= std::min((i + 1) * b, n) + b; ++x) {
+                    const float z = h_[size_t(y) * size_t(v) + size_t(((x % n) + n) % n)];
+                    a = std::min(a, z), c = std::max(c, z);
+                }
+                rows[2 * (size_t(y) * w + i)] = a, rows[2 * (size_t(y) * w + i) + 1] = c;
+            }
+        for (int j = 0; j < w; ++j)
+            for (int i = 0; i < w; ++i) {
+                float a = std::numeric_limits<float>::max(), c = -a;
+                for (int y = j * b - b; y <= std::min((j + 1) * b, n) + b; ++y) {
+                    const size_t row = size_t(((y % n) + n) % n);
+                    a = std::min(a, rows[2 * (row * w + i)]);
+                    c = std::max(c, rows[2 * (row * w + i) + 1]);
+                }
+                m[2 * (size_t(j) * w + i)] = a, m[2 * (size_t(j) * w + i) + 1] = c;
+            }
+        dilated_[k] = std::move(m);
+        dilated_width_[k] = w;
+        jumps_ = k + 1;
+    }
 }
 
 std::size_t HeightfieldTraversal::memory_bytes() const {
     std::size_t bytes = line_.size() * sizeof(double) + h_.size() * sizeof(float);
     bytes += pyramid_.size() * sizeof(float);
+    for (const std::vector<float>& m : dilated_) bytes += m.size() * sizeof(float);
     return bytes;
 }
 
@@ -106,7 +140,8 @@ namespace {
 // The cell of the patch's copy that holds coordinate v, bringing v into the patch by whole
 // periods; `lines` are the n + 1 grid lines. On a grid line, the cell the ray moves into: a ray
 // moving down the axis takes the cell below the line (so v = period stays in the last cell).
-int locate(double& v, double direction, const double* lines, int n, double inv_spacing) {
+[[gnu::always_inline]] inline int locate(double& v, double direction, const double* lines, int n,
+                                         double inv_spacing) {
     const double period = lines[n];
     if (direction < 0) { // v in (0, period], lines[i] < v <= lines[i + 1]
         if (v <= 0 || v > period) {
@@ -127,6 +162,20 @@ int locate(double& v, double direction, const double* lines, int n, double inv_s
     int i = std::clamp(int(v * inv_spacing), 0, n - 1);
     while (i > 0 && v < lines[i]) --i;
     while (i < n - 1 && v >= lines[i + 1]) ++i;
+    return i;
+}
+
+// The cell of v in [0, period], on a grid line the one the ray moves into.
+[[gnu::always_inline]] inline int cell_of(double v, double direction, const double* lines, int n,
+                                          double inv_spacing) {
+    int i = std::clamp(int(v * inv_spacing), 0, n - 1);
+    if (direction < 0) {
+        while (i > 0 && v <= lines[i]) --i;
+        while (i < n - 1 && v > lines[i + 1]) ++i;
+    } else {
+        while (i > 0 && v < lines[i]) --i;
+        while (i < n - 1 && v >= lines[i + 1]) ++i;
+    }
     return i;
 }
 
@@ -180,20 +229,24 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
     int cy = locate(oy, d.y, line, n, inv_spacing_);
     const bool move_x = d.x != 0, move_y = d.y != 0;
     const bool up_x = d.x > 0, up_y = d.y > 0;
+    // Three divisions per ray; everything else is derived from them.
     const double inv_dx = move_x ? 1.0 / d.x : 0.0, inv_dy = move_y ? 1.0 / d.y : 0.0;
+    const double inv_dz = d.z != 0 ? 1.0 / d.z : 0.0;
     const double speed_xy = std::max(std::abs(d.x), std::abs(d.y));
-    const double corner_t = speed_xy > 0 ? corner_tolerance_ / speed_xy : 0.0;
-    const double dd[3] = {d.x, d.y, d.z};
-    const double shear_x = dd[KX] / dd[KZ], shear_y = dd[KY] / dd[KZ], shear_z = 1.0 / dd[KZ];
+    const double inv_speed = std::abs(d.x) >= std::abs(d.y) ? std::abs(inv_dx) : std::abs(inv_dy);
+    const double corner_t = corner_tolerance_ * inv_speed;
+    const double dd[3] = {d.x, d.y, d.z}, inv[3] = {inv_dx, inv_dy, inv_dz};
+    const double shear_z = inv[KZ], shear_x = dd[KX] * shear_z, shear_y = dd[KY] * shear_z;
 
     // The nearest hit at t in [0, best) on the two triangles of cell (i, j), whose copy of the
     // patch lies (bx, by) away: the triangle, or -1.
-    auto hit_cell = [&](int i, int j, double bx, double by, double& best) {
+    auto hit_cell = [&](int i, int j, double bx, double by, double& best)
+        __attribute__((always_inline)) {
         const float* r0 = heights + size_t(j) * stride + size_t(i);
         const float* r1 = r0 + stride;
         const double x0 = line[i] + bx - ox, x1 = line[i + 1] + bx - ox;
         const double y0 = line[j] + by - oy, y1 = line[j + 1] + by - oy;
-        auto project = [&](double x, double y, double z) {
+        auto project = [&](double x, double y, double z) __attribute__((always_inline)) {
             const double a[3] = {x, y, z - oz};
             return Projected{a[KX] - shear_x * a[KZ], a[KY] - shear_y * a[KZ], shear_z * a[KZ]};
         };
@@ -202,7 +255,7 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
         const double diagonal = edge(v3, v1); // shared: triangle B uses its negation
         int found = -1;
         auto test = [&](double u, double v, double w, const Projected& a, const Projected& b,
-                        const Projected& c, int which) {
+                        const Projected& c, int which) __attribute__((always_inline)) {
             if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return;
             const double det = u + v + w;
             if (det == 0) return; // the ray lies in the triangle's plane
@@ -263,9 +316,17 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
     // The cells the ray crosses while within the surface's heights: few, and walking them one
     // by one beats any climbing (measured: 1024^2, theta_i 60 deg); many (grazing rays), and the
     // pyramid pays once a few cells in a row were clear.
-    const double slab_cells = d.z != 0 ? relief_ * inv_spacing_ * speed_xy / std::abs(d.z) : kInf;
+    const double slab_cells =
+        d.z != 0 ? relief_ * inv_spacing_ * speed_xy * std::abs(inv_dz) : kInf;
     const int climb_after = slab_cells <= 64 ? std::numeric_limits<int>::max() : 4;
+    // A jump of r cells of travel (less a hundredth of a cell for the grid lines' rounding).
+    const bool jump_ok = jumps_ > 0 && speed_xy > 0 && slab_cells <= 1024;
+    double jump_t[kJumps] = {0, 0};
+    const double min_jump_t = spacing_ * inv_speed; // shorter than a cell: walk it instead
+    for (int k = 0; k < jumps_; ++k)
+        jump_t[k] = ((1 << kJumpShift[k]) - 0.01) * spacing_ * inv_speed;
     const int ux = up_x ? 1 : 0, uy = up_y ? 1 : 0;
+    const int step_x = up_x ? 1 : -1, step_y = up_y ? 1 : -1;
     const double z_end = d.z > 0 ? kInf : d.z < 0 ? -kInf : oz; // the ray's height at t = inf
     auto escaped = [&] {
         r.kind = d.z > 0   ? TraversalHit::escaped_up
@@ -285,7 +346,64 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
     for (;;) {
         if (level == 0) {
             // Cell by cell, near the surface: the cell's four corners bound its two triangles.
-            for (int skipped = 0;;) {
+            for (int skipped = 0, clear = 1;;) {
+                // Clear of the surface: jump the next r cells of travel whole when the ray's
+                // heights over them miss every height within r cells of the block.
+                if (clear && jump_ok) {
+                    // The longest clear stretch either block size allows: all of its r cells,
+                    // or until the ray's height reaches the block's bound, if sooner.
+                    double step = 0;
+                    const double za = oz + t * d.z;
+                    for (int k = 0; k < jumps_; ++k) {
+                        const float* m = dilated_[k].data() + 2 * (size_t(cy >> kJumpShift[k]) *
+                                                                       size_t(dilated_width_[k]) +
+                                                                   size_t(cx >> kJumpShift[k]));
+                        double s_k = 0;
+                        const double over = za - (double(m[1]) + pad_);  // > 0: above the block
+                        const double under = (double(m[0]) - pad_) - za; // > 0: below it
+                        if (over > 0)
+                            s_k = d.z >= 0 ? jump_t[k] : std::min(jump_t[k], over * -inv_dz);
+                        else if (under > 0)
+                            s_k = d.z <= 0 ? jump_t[k] : std::min(jump_t[k], under * inv_dz);
+                        step = std::max(step, s_k);
+                    }
+                    if (step > min_jump_t) {
+                        t += step;
+                        ++skipped;
+                        const int wraps_before = r.wraps;
+                        double wall_t = kInf; // when this jump crossed a side wall
+                        double px = ox + t * d.x, py = oy + t * d.y;
+                        if (px > period || (px == period && !(d.x < 0)) || px < 0 ||
+                            (px == 0 && d.x < 0)) {
+                            const bool over = px >= period;
+                            wall_t = ((over ? period : 0.0) - ox) * inv_dx;
+                            px += over ? -period : period, ox += over ? -period : period;
+                            ++r.wraps;
+                        }
+                        if (py > period || (py == period && !(d.y < 0)) || py < 0 ||
+                            (py == 0 && d.y < 0)) {
+                            const bool over = py >= period;
+                            wall_t = std::min(wall_t, ((over ? period : 0.0) - oy) * inv_dy);
+                            py += over ? -period : period, oy += over ? -period : period;
+                            ++r.wraps;
+                        }
+                        const double z = oz + t * d.z;
+                        if (beyond(z)) {
+                            // Out through the top (or bottom) plane before the wall: no wrap.
+                            const double plane_t = ((d.z > 0 ? z_top : z_bottom) - oz) * inv_dz;
+                            if (plane_t <= wall_t) r.wraps = wraps_before;
+                            return escaped();
+                        }
+                        if (r.wraps > max_wraps) {
+                            r.kind = TraversalHit::lost;
+                            return r;
+                        }
+                        cx = cell_of(px, d.x, line, n, inv_spacing_);
+                        cy = cell_of(py, d.y, line, n, inv_spacing_);
+                        continue;
+                    }
+                }
+                clear = 0;
                 const double tx = move_x ? (line[cx + ux] - ox) * inv_dx : kInf;
                 const double ty = move_y ? (line[cy + uy] - oy) * inv_dy : kInf;
                 const double t_out = std::min(tx, ty);
@@ -304,15 +422,16 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
                         tri = near_corner(cx, cy, best, hx, hy, bx, by);
                     if (tri >= 0) return found(tri, hx, hy, bx, by, best);
                 } else {
-                    ++skipped;
+                    ++skipped, clear = 1;
                 }
                 if (!(t_out < kInf)) return escaped();
                 t = std::max(t, t_out);
                 if (beyond(oz + t * d.z)) return escaped();
                 const int old_x = cx, old_y = cy;
-                if (tx <= ty) cx += up_x ? 1 : -1;
-                if (ty <= tx) cy += up_y ? 1 : -1;
-                if (wrap()) {
+                // Branch-free steps: which axis comes first is as good as random.
+                cx += int(tx <= ty) * step_x;
+                cy += int(ty <= tx) * step_y;
+                if ((unsigned(cx) >= unsigned(n) || unsigned(cy) >= unsigned(n)) && wrap()) {
                     r.kind = TraversalHit::lost;
                     return r;
                 }

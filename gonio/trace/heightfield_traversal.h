@@ -54,7 +54,7 @@ class HeightfieldTraversal {
 
   private:
     int n_ = 0;
-    double inv_spacing_ = 1;
+    double inv_spacing_ = 1, spacing_ = 1;
     double corner_tolerance_ = 0; // distance to a cell corner below which both sides are tested
     double pad_ = 0;              // added to every min-max bound (conservative skipping)
     double relief_ = 0;           // z_max - z_min
@@ -67,6 +67,15 @@ class HeightfieldTraversal {
     std::vector<std::size_t> level_offset_;
     std::vector<int> level_width_;
     int top_ = 0; // the level of one node
+    // Dilated blocks: for block size b = radius r in kJumpRadius, per block of b x b cells the
+    // (min, max) of every height within r cells of the block (periodic). A ray anywhere in the
+    // block whose heights over its next r cells of travel miss that range jumps them whole
+    // (no alignment to nodes); the tables are small enough to stay in cache.
+    static constexpr int kJumps = 2;
+    static constexpr int kJumpShift[kJumps] = {2, 4}; // b = r = 4 and 16 cells
+    std::vector<float> dilated_[kJumps];
+    int dilated_width_[kJumps] = {0, 0};
+    int jumps_ = 0; // the sizes that fit the grid
 
     // The walk, for one orientation of the ray's sheared frame (kz: the dominant axis).
     template <int KX, int KY, int KZ>
