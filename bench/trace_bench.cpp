@@ -157,15 +157,15 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
     return 0;
 }
 
-int hits(bool quick, long long rays) {
+int hits(bool quick, long long rays, int only_size) {
     struct Case {
         const char* ndf;
         double alpha;
         int n;
     };
     std::vector<Case> cases;
-    const std::vector<int> sizes =
-        quick ? std::vector<int>{64} : std::vector<int>{64, 256, 1024, 4096};
+    std::vector<int> sizes = quick ? std::vector<int>{64} : std::vector<int>{64, 256, 1024, 4096};
+    if (only_size > 0) sizes = {only_size};
     const std::vector<double> alphas =
         quick ? std::vector<double>{0.5} : std::vector<double>{0.1, 0.5, 1.0, 2.0};
     for (int n : sizes)
@@ -255,7 +255,7 @@ int main(int argc, char** argv) {
             return 2;
         }
     }
-    if (mode == "hits") return hits(quick, rays > 0 ? rays : quick ? 1 << 14 : 1 << 17);
+    if (mode == "hits") return hits(quick, rays > 0 ? rays : quick ? 1 << 14 : 1 << 17, only_size);
     return speed(quick,
                  rays > 0 ? rays
                  : quick  ? 1 << 16
