@@ -198,26 +198,24 @@ TraversalHit HeightfieldTraversal::trace(const Vec3& o, const Vec3& d, double z_
     const double ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
     const int kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
     const double dz = kz == 0 ? d.x : kz == 1 ? d.y : d.z;
-    switch (kz * 2 + (dz < 0)) {
-    case 0:
-        return walk<1, 2, 0>(o, d, z_top, z_bottom, max_wraps);
-    case 1:
-        return walk<2, 1, 0>(o, d, z_top, z_bottom, max_wraps);
-    case 2:
-        return walk<2, 0, 1>(o, d, z_top, z_bottom, max_wraps);
-    case 3:
-        return walk<0, 2, 1>(o, d, z_top, z_bottom, max_wraps);
-    case 4:
-        return walk<0, 1, 2>(o, d, z_top, z_bottom, max_wraps);
-    default:
-        return walk<1, 0, 2>(o, d, z_top, z_bottom, max_wraps);
-    }
+    // Conditional branches, not a jump table: a beam's rays alternate between a few of these,
+    // which the branch predictor follows and an indirect jump did not (callgrind, 1024^2,
+    // theta_i 60 deg: 0.7 mispredicted jumps per call before).
+    if (kz == 2)
+        return dz < 0 ? walk<1, 0, 2>(o, d, z_top, z_bottom, max_wraps)
+                      : walk<0, 1, 2>(o, d, z_top, z_bottom, max_wraps);
+    if (kz == 0)
+        return dz < 0 ? walk<2, 1, 0>(o, d, z_top, z_bottom, max_wraps)
+                      : walk<1, 2, 0>(o, d, z_top, z_bottom, max_wraps);
+    return dz < 0 ? walk<0, 2, 1>(o, d, z_top, z_bottom, max_wraps)
+                  : walk<2, 0, 1>(o, d, z_top, z_bottom, max_wraps);
 }
 
 template <int KX, int KY, int KZ>
 TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_top, double z_bottom,
                                         int max_wraps) const {
     TraversalHit r;
+    int wraps = 0; // in a register: r is the returned object, in memory
     const int n = n_;
     const double* line = line_.data();
     const float* heights = h_.data();
@@ -256,7 +254,8 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
         int found = -1;
         auto test = [&](double u, double v, double w, const Projected& a, const Projected& b,
                         const Projected& c, int which) __attribute__((always_inline)) {
-            if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return;
+            // Outside when the edge functions differ in sign (one branch: as good as random).
+            if (((u < 0) | (v < 0) | (w < 0)) & ((u > 0) | (v > 0) | (w > 0))) return;
             const double det = u + v + w;
             if (det == 0) return; // the ray lies in the triangle's plane
             const double t = (u * a.z + v * b.z + w * c.z) / det;
@@ -268,7 +267,8 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
     };
 
     // The hit on triangle `tri` of cell (i, j), in the copy of the patch (bx, by) away.
-    auto found = [&](int tri, int i, int j, double bx, double by, double best) {
+    auto found = [&](int tri, int i, int j, double bx, double by, double best)
+        __attribute__((always_inline)) {
         const float* r0 = heights + size_t(j) * stride + size_t(i);
         const float* r1 = r0 + stride;
         const double sx = line[i + 1] - line[i], sy = line[j + 1] - line[j];
@@ -287,12 +287,13 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
         if (at.y >= period) at.y -= period;
         r.position = at;
         r.cell_x = i, r.cell_y = j, r.triangle = tri;
+        r.wraps = wraps;
         return r;
     };
     // The two cells beside the corner of cell (cx, cy) the ray passes near: tested when the
     // rounding of the two crossing times could order them wrongly (or step past both).
     auto near_corner = [&](int cx, int cy, double& best, int& hx, int& hy, double& bx_hit,
-                           double& by_hit) {
+                           double& by_hit) __attribute__((always_inline)) {
         int tri = -1;
         for (int side = 0; side < 2; ++side) {
             int ex = cx, ey = cy;
@@ -323,25 +324,39 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
     const bool jump_ok = jumps_ > 0 && speed_xy > 0 && slab_cells <= 1024;
     double jump_t[kJumps] = {0, 0};
     const double min_jump_t = spacing_ * inv_speed; // shorter than a cell: walk it instead
-    for (int k = 0; k < jumps_; ++k)
+    const float* dilated[kJumps] = {nullptr, nullptr};
+    size_t dilated_width[kJumps] = {0, 0};
+    for (int k = 0; k < jumps_; ++k) {
         jump_t[k] = ((1 << kJumpShift[k]) - 0.01) * spacing_ * inv_speed;
+        dilated[k] = dilated_[k].data(), dilated_width[k] = size_t(dilated_width_[k]);
+    }
     const int ux = up_x ? 1 : 0, uy = up_y ? 1 : 0;
     const int step_x = up_x ? 1 : -1, step_y = up_y ? 1 : -1;
     const double z_end = d.z > 0 ? kInf : d.z < 0 ? -kInf : oz; // the ray's height at t = inf
-    auto escaped = [&] {
+    auto escaped = [&]() __attribute__((always_inline)) {
         r.kind = d.z > 0   ? TraversalHit::escaped_up
                  : d.z < 0 ? TraversalHit::escaped_down
                            : TraversalHit::lost;
+        r.wraps = wraps;
         return r;
     };
-    auto beyond = [&](double z) { return d.z > 0 ? z > z_top : d.z < 0 && z < z_bottom; };
+    auto lost = [&]() __attribute__((always_inline)) { // past max_wraps walls
+        r.kind = TraversalHit::lost;
+        r.wraps = wraps;
+        return r;
+    };
+    // Past the plane the ray leaves through: z > z_top going up, z < z_bottom going down.
+    const double z_stop = d.z > 0 ? z_top : z_bottom, stop_sign = d.z > 0 ? 1 : d.z < 0 ? -1 : 0;
+    auto beyond = [&](double z) __attribute__((always_inline)) {
+        return (z - z_stop) * stop_sign > 0;
+    };
     // Through a side wall: the next copy of the patch, the origin moved back by a period.
-    auto wrap = [&] {
-        if (cx == n) cx = 0, ox -= period, ++r.wraps;
-        if (cx < 0) cx = n - 1, ox += period, ++r.wraps;
-        if (cy == n) cy = 0, oy -= period, ++r.wraps;
-        if (cy < 0) cy = n - 1, oy += period, ++r.wraps;
-        return r.wraps > max_wraps;
+    auto wrap = [&]() __attribute__((always_inline)) {
+        if (cx == n) cx = 0, ox -= period, ++wraps;
+        if (cx < 0) cx = n - 1, ox += period, ++wraps;
+        if (cy == n) cy = 0, oy -= period, ++wraps;
+        if (cy < 0) cy = n - 1, oy += period, ++wraps;
+        return wraps > max_wraps;
     };
     for (;;) {
         if (level == 0) {
@@ -355,9 +370,9 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
                     double step = 0;
                     const double za = oz + t * d.z;
                     for (int k = 0; k < jumps_; ++k) {
-                        const float* m = dilated_[k].data() + 2 * (size_t(cy >> kJumpShift[k]) *
-                                                                       size_t(dilated_width_[k]) +
-                                                                   size_t(cx >> kJumpShift[k]));
+                        const float* m =
+                            dilated[k] + 2 * (size_t(cy >> kJumpShift[k]) * dilated_width[k] +
+                                              size_t(cx >> kJumpShift[k]));
                         double s_k = 0;
                         const double over = za - (double(m[1]) + pad_);  // > 0: above the block
                         const double under = (double(m[0]) - pad_) - za; // > 0: below it
@@ -366,11 +381,14 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
                         else if (under > 0)
                             s_k = d.z <= 0 ? jump_t[k] : std::min(jump_t[k], under * inv_dz);
                         step = std::max(step, s_k);
+                        // The larger block's region holds the smaller one's: it can only jump
+                        // further when the smaller block was cleared whole.
+                        if (s_k < jump_t[k]) break;
                     }
                     if (step > min_jump_t) {
                         t += step;
                         ++skipped;
-                        const int wraps_before = r.wraps;
+                        const int wraps_before = wraps;
                         double wall_t = kInf; // when this jump crossed a side wall
                         double px = ox + t * d.x, py = oy + t * d.y;
                         if (px > period || (px == period && !(d.x < 0)) || px < 0 ||
@@ -378,25 +396,24 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
                             const bool over = px >= period;
                             wall_t = ((over ? period : 0.0) - ox) * inv_dx;
                             px += over ? -period : period, ox += over ? -period : period;
-                            ++r.wraps;
+                            ++wraps;
                         }
                         if (py > period || (py == period && !(d.y < 0)) || py < 0 ||
                             (py == 0 && d.y < 0)) {
                             const bool over = py >= period;
                             wall_t = std::min(wall_t, ((over ? period : 0.0) - oy) * inv_dy);
                             py += over ? -period : period, oy += over ? -period : period;
-                            ++r.wraps;
+                            ++wraps;
                         }
                         const double z = oz + t * d.z;
                         if (beyond(z)) {
                             // Out through the top (or bottom) plane before the wall: no wrap.
                             const double plane_t = ((d.z > 0 ? z_top : z_bottom) - oz) * inv_dz;
-                            if (plane_t <= wall_t) r.wraps = wraps_before;
+                            if (plane_t <= wall_t) wraps = wraps_before;
                             return escaped();
                         }
-                        if (r.wraps > max_wraps) {
-                            r.kind = TraversalHit::lost;
-                            return r;
+                        if (wraps > max_wraps) {
+                            return lost();
                         }
                         cx = cell_of(px, d.x, line, n, inv_spacing_);
                         cy = cell_of(py, d.y, line, n, inv_spacing_);
@@ -432,8 +449,7 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
                 cx += int(tx <= ty) * step_x;
                 cy += int(ty <= tx) * step_y;
                 if ((unsigned(cx) >= unsigned(n) || unsigned(cy) >= unsigned(n)) && wrap()) {
-                    r.kind = TraversalHit::lost;
-                    return r;
+                    return lost();
                 }
                 // Clear of the surface for a while: look further ahead from a coarser level.
                 if (skipped >= climb_after && top_ > 0) {
@@ -468,8 +484,7 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
         if (step_x) cx = up_x ? x1 : x0 - 1;
         if (step_y) cy = up_y ? y1 : y0 - 1;
         if (wrap()) {
-            r.kind = TraversalHit::lost;
-            return r;
+            return lost();
         }
         // Out through one face: where along the other axis.
         if (!step_y)
