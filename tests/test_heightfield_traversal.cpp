@@ -170,6 +170,41 @@ TEST_CASE("Scene::trace gives the same hits, wraps and escapes with both backend
     }
 }
 
+TEST_CASE("rays leaving the surface cross the same walls with both backends") {
+    // Rays starting just off the surface and heading away from it (up from above, down from
+    // below), many of them grazing: most leave through the top or bottom plane after crossing
+    // side walls, some meet the surface again. Both backends must count the same walls (a jump
+    // can cross two walls and the plane between them) and report the same outcome.
+    for (double alpha : {0.3, 1.5}) {
+        const HeightField surface = surface_of(Beckmann(alpha), 64, 3);
+        const Scene walk(surface, TraceBackend::heightfield);
+        const Scene embree(surface, TraceBackend::embree);
+        const HeightfieldTraversal heights(surface);
+        std::mt19937_64 rng(5);
+        std::uniform_real_distribution<double> u(0, 1);
+        long long rays = 0, differ = 0, wrapped = 0;
+        for (int k = 0; k < 200000; ++k) {
+            const bool below = k % 3 == 0;
+            const double theta = std::acos(std::pow(u(rng), 3.0)); // many grazing rays
+            Vec3 d = spherical_direction(theta, 2 * kPi * u(rng));
+            d.z = below ? -d.z : d.z; // away from the surface
+            const double x = u(rng) * walk.period(), y = u(rng) * walk.period();
+            const double gap = 0.01 + 0.5 * u(rng);
+            const Vec3 o{x, y, heights.height_at(x, y) + (below ? -gap : gap)};
+            const SurfaceHit a = embree.trace(o, d, below);
+            const SurfaceHit b = walk.trace(o, d, below);
+            ++rays;
+            wrapped += a.wraps > 0;
+            if (a.kind != b.kind || a.wraps != b.wraps) ++differ;
+        }
+        CAPTURE(alpha);
+        MESSAGE("alpha " << alpha << ": " << rays << " rays leaving, " << wrapped
+                         << " crossed a wall, " << differ << " differ");
+        CHECK(wrapped > rays / 10);
+        CHECK(double(differ) <= 1e-4 * double(rays));
+    }
+}
+
 TEST_CASE("whole runs with either backend agree within their Monte Carlo error, ledgers closed") {
     const BeckersSensor sensor(578);
     const SpecularReflector mirror(FresnelTerm::mirror());

@@ -389,27 +389,29 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
                         t += step;
                         ++skipped;
                         const int wraps_before = wraps;
-                        double wall_t = kInf; // when this jump crossed a side wall
+                        // When this jump crossed a side wall in x and in y (it can cross both).
+                        double wall_tx = kInf, wall_ty = kInf;
                         double px = ox + t * d.x, py = oy + t * d.y;
                         if (px > period || (px == period && !(d.x < 0)) || px < 0 ||
                             (px == 0 && d.x < 0)) {
                             const bool over = px >= period;
-                            wall_t = ((over ? period : 0.0) - ox) * inv_dx;
+                            wall_tx = ((over ? period : 0.0) - ox) * inv_dx;
                             px += over ? -period : period, ox += over ? -period : period;
                             ++wraps;
                         }
                         if (py > period || (py == period && !(d.y < 0)) || py < 0 ||
                             (py == 0 && d.y < 0)) {
                             const bool over = py >= period;
-                            wall_t = std::min(wall_t, ((over ? period : 0.0) - oy) * inv_dy);
+                            wall_ty = ((over ? period : 0.0) - oy) * inv_dy;
                             py += over ? -period : period, oy += over ? -period : period;
                             ++wraps;
                         }
                         const double z = oz + t * d.z;
                         if (beyond(z)) {
-                            // Out through the top (or bottom) plane before the wall: no wrap.
+                            // Out through the top (or bottom) plane: only the walls crossed
+                            // before it count.
                             const double plane_t = ((d.z > 0 ? z_top : z_bottom) - oz) * inv_dz;
-                            if (plane_t <= wall_t) wraps = wraps_before;
+                            wraps = wraps_before + int(wall_tx < plane_t) + int(wall_ty < plane_t);
                             return escaped();
                         }
                         if (wraps > max_wraps) {
