@@ -28,6 +28,15 @@ HeightField surface_of(const Ndf& ndf, int n, std::uint64_t seed = 1) {
     return generate_surface(ndf, s, 2);
 }
 
+// A random direction with cos(theta) = u^3 (many grazing ones), its z of the given sign.
+Vec3 mostly_grazing(std::mt19937_64& rng, double z_sign) {
+    std::uniform_real_distribution<double> u(0, 1);
+    const double theta = std::acos(std::pow(u(rng), 3.0));
+    Vec3 d = spherical_direction(theta, 2 * kPi * u(rng));
+    d.z = std::copysign(d.z, z_sign);
+    return d;
+}
+
 std::unique_ptr<Ndf> ndf_of(bool ggx, double alpha) {
     if (ggx) return std::make_unique<Ggx>(alpha);
     return std::make_unique<Beckmann>(alpha);
@@ -144,10 +153,7 @@ TEST_CASE("Scene::trace gives the same hits, wraps and escapes with both backend
         long long rays = 0, differ = 0, hits = 0;
         for (int k = 0; k < 200000; ++k) {
             const bool below = k % 3 == 0;
-            const double theta = std::acos(std::pow(u(rng), 3.0)); // many grazing rays
-            const double phi = 2 * kPi * u(rng);
-            Vec3 d = spherical_direction(theta, phi);
-            d.z = below ? d.z : -d.z; // towards the surface
+            const Vec3 d = mostly_grazing(rng, below ? 1 : -1); // towards the surface
             Vec3 o{u(rng) * walk.period(), u(rng) * walk.period(),
                    below ? walk.z_min() - walk.epsilon() : walk.z_max() + walk.epsilon()};
             const SurfaceHit a = embree.trace(o, d, below);
@@ -186,9 +192,7 @@ TEST_CASE("rays leaving the surface cross the same walls with both backends") {
         long long rays = 0, differ = 0, wrapped = 0;
         for (int k = 0; k < 200000; ++k) {
             const bool below = k % 3 == 0;
-            const double theta = std::acos(std::pow(u(rng), 3.0)); // many grazing rays
-            Vec3 d = spherical_direction(theta, 2 * kPi * u(rng));
-            d.z = below ? -d.z : d.z; // away from the surface
+            const Vec3 d = mostly_grazing(rng, below ? -1 : 1); // away from the surface
             const double x = u(rng) * walk.period(), y = u(rng) * walk.period();
             const double gap = 0.01 + 0.5 * u(rng);
             const Vec3 o{x, y, heights.height_at(x, y) + (below ? -gap : gap)};
