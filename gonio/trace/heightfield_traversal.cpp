@@ -181,8 +181,9 @@ namespace {
 
 // The cell in [lo, hi] that holds v (an exit point on a node's face), taking, within `tolerance`
 // of a grid line, the cell the ray comes from (the walk then steps on at once).
-int locate_within(double v, double direction, int lo, int hi, const double* lines,
-                  double inv_spacing, double tolerance) {
+[[gnu::always_inline]] inline int locate_within(double v, double direction, int lo, int hi,
+                                                const double* lines, double inv_spacing,
+                                                double tolerance) {
     int i = std::clamp(int(v * inv_spacing), lo, hi); // v >= 0 up to rounding: truncation
     while (i > lo && v < lines[i]) --i;
     while (i < hi && v >= lines[i + 1]) ++i;
@@ -488,11 +489,12 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
         if (wrap()) {
             return lost();
         }
-        // Out through one face: where along the other axis.
-        if (!step_y)
+        // Out through one face: where along the other axis (a ray that does not move along it
+        // stays in its cell there, which is the one locate_within would find).
+        if (!step_y && move_y)
             cy =
                 locate_within(oy + t * d.y, d.y, y0, y1 - 1, line, inv_spacing_, corner_tolerance_);
-        if (!step_x)
+        if (!step_x && move_x)
             cx =
                 locate_within(ox + t * d.x, d.x, x0, x1 - 1, line, inv_spacing_, corner_tolerance_);
         // The highest level whose node the step changed: look at the new node from there (the
