@@ -181,12 +181,15 @@ SurfaceHit Scene::trace(Vec3 o, const Vec3& d, bool below, int max_wraps) const 
             r.lifted = true;
         }
     }
-    return walk_ ? trace_heightfield(o, d, side, max_wraps, r)
-                 : trace_embree(o, d, side, max_wraps, r);
+    if (walk_)
+        trace_heightfield(o, d, side, max_wraps, r);
+    else
+        trace_embree(o, d, side, max_wraps, r);
+    return r;
 }
 
-SurfaceHit Scene::trace_heightfield(Vec3 o, const Vec3& d, double side, int max_wraps,
-                                    SurfaceHit r) const {
+void Scene::trace_heightfield(Vec3 o, const Vec3& d, double side, int max_wraps,
+                              SurfaceHit& r) const {
     for (;;) {
         const TraversalHit h =
             walk_->trace(o, d, z_max_ + epsilon_, z_min_ - epsilon_, max_wraps - r.wraps);
@@ -194,30 +197,29 @@ SurfaceHit Scene::trace_heightfield(Vec3 o, const Vec3& d, double side, int max_
         if (h.kind == TraversalHit::escaped_up || h.kind == TraversalHit::escaped_down) {
             r.kind = h.kind == TraversalHit::escaped_up ? SurfaceHit::escaped_up
                                                         : SurfaceHit::escaped_down;
-            return r;
+            return;
         }
         if (h.kind != TraversalHit::hit) {
             r.kind = SurfaceHit::lost;
-            return r;
+            return;
         }
         const Vec3 up = normalize(h.normal);
         if (side * dot(d, up) > 0) { // met from the wrong side: as in trace_embree
             o = h.position + side * epsilon_ * up;
             if (++r.reentries > 64) {
                 r.kind = SurfaceHit::lost;
-                return r;
+                return;
             }
             continue;
         }
         r.kind = SurfaceHit::hit;
         r.normal = up;
         r.position = h.position;
-        return r;
+        return;
     }
 }
 
-SurfaceHit Scene::trace_embree(Vec3 o, const Vec3& d, double side, int max_wraps,
-                               SurfaceHit r) const {
+void Scene::trace_embree(Vec3 o, const Vec3& d, double side, int max_wraps, SurfaceHit& r) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     for (r.wraps = 0; r.wraps <= max_wraps;) {
@@ -254,7 +256,7 @@ SurfaceHit Scene::trace_embree(Vec3 o, const Vec3& d, double side, int max_wraps
             if (at.y < 0) at.y += period_;
             if (at.y >= period_) at.y -= period_;
             r.position = at;
-            return r;
+            return;
         }
         // Nothing hit: the ray leaves the box through the wall it meets first.
         const double inf = std::numeric_limits<double>::infinity();
@@ -266,7 +268,7 @@ SurfaceHit Scene::trace_embree(Vec3 o, const Vec3& d, double side, int max_wraps
         const double t_wall = std::max(0.0, std::min({tx, ty, tz}));
         if (tz <= tx && tz <= ty) {
             r.kind = d.z > 0 ? SurfaceHit::escaped_up : SurfaceHit::escaped_down;
-            return r;
+            return;
         }
         // Through a side wall: re-enter through the opposite one.
         o = o + t_wall * d;
@@ -275,7 +277,6 @@ SurfaceHit Scene::trace_embree(Vec3 o, const Vec3& d, double side, int max_wraps
         ++r.wraps;
     }
     r.kind = SurfaceHit::lost;
-    return r;
 }
 
 } // namespace gonio

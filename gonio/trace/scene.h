@@ -89,10 +89,11 @@ class Scene {
     void record_segments(std::vector<float>* sink) { recorder_ = sink; }
 
   private:
-    SurfaceHit trace_embree(Vec3 origin, const Vec3& dir, double side, int max_wraps,
-                            SurfaceHit r) const;
-    SurfaceHit trace_heightfield(Vec3 origin, const Vec3& dir, double side, int max_wraps,
-                                 SurfaceHit r) const;
+    // Complete r (which trace() began) for the backend; in place, not copied in and out.
+    void trace_embree(Vec3 origin, const Vec3& dir, double side, int max_wraps,
+                      SurfaceHit& r) const;
+    void trace_heightfield(Vec3 origin, const Vec3& dir, double side, int max_wraps,
+                           SurfaceHit& r) const;
 
     TraceBackend backend_;
     std::size_t memory_bytes_ = 0;
