@@ -418,8 +418,19 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
                         if (wraps > max_wraps) {
                             return lost();
                         }
+                        const int jumped_x = cx, jumped_y = cy;
                         cx = cell_of(px, d.x, line, n, inv_spacing_);
                         cy = cell_of(py, d.y, line, n, inv_spacing_);
+                        // Jumps count as clear cells: a grazing ray far above the surface
+                        // climbs the pyramid instead of jumping r cells at a time (256^2,
+                        // theta_i 89 deg: +20 % beam rays/s; see the README).
+                        if (skipped >= climb_after && top_ > 0) {
+                            const unsigned changed =
+                                unsigned(jumped_x ^ cx) | unsigned(jumped_y ^ cy);
+                            const int highest = changed ? 31 - __builtin_clz(changed) : 0;
+                            level = std::max(1, std::min(highest, top_));
+                            break;
+                        }
                         continue;
                     }
                 }
