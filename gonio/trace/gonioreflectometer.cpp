@@ -19,6 +19,8 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
     const double L = scene.period(), eps = scene.epsilon();
     const Vec3 down = -wi;
     const bool transmits = material.transmits();
+    // Every batch's beam rays start on the top plane along `down`: they may start lower.
+    const BeamEntry beam = scene.beam_entry(down);
 
     auto trace_block = [&](long long id, long long first, long long last, BlockOutput& o) {
         o.clear(nc);
@@ -42,7 +44,8 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
                 for (int k = 0; k < nc; ++k) entry[k] += w[k];
             };
             for (;;) {
-                const SurfaceHit h = scene.trace(origin, dir, below);
+                const SurfaceHit h = scene.trace(origin, dir, below, Scene::kMaxWraps,
+                                                 bounces == 0 ? &beam : nullptr);
                 segments += h.wraps + 1;
                 if (h.kind == SurfaceHit::escaped_up || h.kind == SurfaceHit::escaped_down) {
                     // A ray leaves for good only upwards from above and downwards from below; and

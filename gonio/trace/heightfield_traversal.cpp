@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tbb/parallel_for.h>
 
 // The edge functions must be exactly antisymmetric (see the header): no fused multiply-add.
 #pragma GCC optimize("fp-contract=off")
@@ -120,11 +121,89 @@ HeightfieldTraversal::HeightfieldTraversal(const HeightField& s) : n_(s.n) {
         dilated_width_[k] = w;
         jumps_ = k + 1;
     }
+
+    // The beam windows: the maximum along x over each row, then along y over those (periodic).
+    {
+        const int span = (1 << kBeamShift) + 5;             // vertices i - 1 .. i + b + 3
+        std::vector<int> wrapped(size_t(n) + size_t(span)); // (i - 1) mod n, i in [0, n + span)
+        for (int i = 0; i < n + span; ++i) wrapped[size_t(i)] = (i - 1 + n) % n;
+        std::vector<float> rows(size_t(n) * size_t(n));
+        beam_window_.resize(size_t(n) * size_t(n));
+        tbb::parallel_for(0, n, [&](int y) {
+            const float* row = h_.data() + size_t(y) * size_t(v);
+            for (int i = 0; i < n; ++i) {
+                float c = row[wrapped[size_t(i)]];
+                for (int k = 1; k < span; ++k) c = std::max(c, row[wrapped[size_t(i + k)]]);
+                rows[size_t(y) * size_t(n) + size_t(i)] = c;
+            }
+        });
+        tbb::parallel_for(0, n, [&](int j) {
+            float* out = beam_window_.data() + size_t(j) * size_t(n);
+            const float* first = rows.data() + size_t(wrapped[size_t(j)]) * size_t(n);
+            std::copy(first, first + n, out);
+            for (int k = 1; k < span; ++k) {
+                const float* r = rows.data() + size_t(wrapped[size_t(j + k)]) * size_t(n);
+                for (int i = 0; i < n; ++i) out[i] = std::max(out[i], r[i]);
+            }
+        });
+    }
+}
+
+BeamEntry HeightfieldTraversal::beam_entry(const Vec3& d, double z_start) const {
+    BeamEntry e;
+    e.d = d, e.z_start = z_start, e.shift = kBeamShift;
+    const double speed_xy = std::max(std::abs(d.x), std::abs(d.y));
+    // Rays that cross many cells within the relief (grazing ones) have the pyramid instead.
+    if (!(d.z < 0) || relief_ * inv_spacing_ * speed_xy > 128 * -d.z) return e;
+    const int b = 1 << kBeamShift, w = (n_ + b - 1) >> kBeamShift;
+    e.width = w;
+    e.t.resize(size_t(w) * size_t(w));
+    // Steps of just under one cell of travel, up to a quarter of the patch (so that the walk's
+    // leap there crosses at most one side wall per axis).
+    const double step = speed_xy > 0 ? 0.99 * spacing_ / speed_xy : kInf;
+    const int steps = speed_xy > 0 ? std::max(1, n_ / 4) : 1;
+    const int n = n_;
+    const double inv_dz = 1.0 / d.z;
+    // The cell of coordinate v (v within a quarter period of the patch), periodic; truncation
+    // with a correction is the floor (std::floor is a library call without SSE4.1).
+    auto cell = [n, inv = inv_spacing_](double v) {
+        const double g = v * inv;
+        int i = int(g);
+        i -= int(g < double(i));
+        return i < 0 ? i + n : i >= n ? i - n : i;
+    };
+    tbb::parallel_for(0, w, [&](int bj) {
+        for (int bi = 0; bi < w; ++bi) {
+            const double x0 = bi * b * spacing_, y0 = bj * b * spacing_;
+            double clear = 0;
+            for (int k = 0; k < steps; ++k) {
+                const double ta = k == 0 ? 0.0 : k * step, tb = (k + 1) * step;
+                // The cells the block's rays cross in [ta, tb] start at (i, j) (a cell to spare).
+                const double xa = speed_xy > 0 ? x0 + std::min(ta * d.x, tb * d.x) : x0;
+                const double ya = speed_xy > 0 ? y0 + std::min(ta * d.y, tb * d.y) : y0;
+                const double bound =
+                    double(beam_window_[size_t(cell(ya)) * size_t(n) + size_t(cell(xa))]) +
+                    2 * pad_;
+                // Clear while the ray's height (falling) stays above the bound.
+                const double t_reach = (bound - z_start) * inv_dz;
+                if (!(t_reach > tb)) {
+                    clear = std::max(ta, t_reach);
+                    break;
+                }
+                clear = tb;
+            }
+            // Rounded down to float.
+            float c = float(clear);
+            if (double(c) > clear) c = std::nextafter(c, 0.0f);
+            e.t[size_t(bj) * size_t(w) + size_t(bi)] = c;
+        }
+    });
+    return e;
 }
 
 std::size_t HeightfieldTraversal::memory_bytes() const {
     std::size_t bytes = line_.size() * sizeof(double) + h_.size() * sizeof(float);
-    bytes += pyramid_.size() * sizeof(float);
+    bytes += pyramid_.size() * sizeof(float) + beam_window_.size() * sizeof(float);
     for (const std::vector<float>& m : dilated_) bytes += m.size() * sizeof(float);
     return bytes;
 }
@@ -194,7 +273,8 @@ namespace {
 } // namespace
 
 TraversalHit HeightfieldTraversal::trace(const Vec3& o, const Vec3& d, double z_top,
-                                         double z_bottom, int max_wraps) const {
+                                         double z_bottom, int max_wraps,
+                                         const BeamEntry* beam) const {
     // The dominant axis becomes z' of the sheared frame; the other two keep the winding.
     const double ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
     const int kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
@@ -203,18 +283,18 @@ TraversalHit HeightfieldTraversal::trace(const Vec3& o, const Vec3& d, double z_
     // which the branch predictor follows and an indirect jump did not (callgrind, 1024^2,
     // theta_i 60 deg: 0.7 mispredicted jumps per call before).
     if (kz == 2)
-        return dz < 0 ? walk<1, 0, 2>(o, d, z_top, z_bottom, max_wraps)
-                      : walk<0, 1, 2>(o, d, z_top, z_bottom, max_wraps);
+        return dz < 0 ? walk<1, 0, 2>(o, d, z_top, z_bottom, max_wraps, beam)
+                      : walk<0, 1, 2>(o, d, z_top, z_bottom, max_wraps, beam);
     if (kz == 0)
-        return dz < 0 ? walk<2, 1, 0>(o, d, z_top, z_bottom, max_wraps)
-                      : walk<1, 2, 0>(o, d, z_top, z_bottom, max_wraps);
-    return dz < 0 ? walk<0, 2, 1>(o, d, z_top, z_bottom, max_wraps)
-                  : walk<2, 0, 1>(o, d, z_top, z_bottom, max_wraps);
+        return dz < 0 ? walk<2, 1, 0>(o, d, z_top, z_bottom, max_wraps, beam)
+                      : walk<1, 2, 0>(o, d, z_top, z_bottom, max_wraps, beam);
+    return dz < 0 ? walk<0, 2, 1>(o, d, z_top, z_bottom, max_wraps, beam)
+                  : walk<2, 0, 1>(o, d, z_top, z_bottom, max_wraps, beam);
 }
 
 template <int KX, int KY, int KZ>
 TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_top, double z_bottom,
-                                        int max_wraps) const {
+                                        int max_wraps, const BeamEntry* beam) const {
     TraversalHit r;
     int wraps = 0; // in a register: r is the returned object, in memory
     const int n = n_;
@@ -359,6 +439,45 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
         if (cy < 0) cy = n - 1, oy += period, ++wraps;
         return wraps > max_wraps;
     };
+    // On to t_new over a stretch clear of the surface, which crosses at most one side wall per
+    // axis: 0, or 1 when the ray left through its plane on the way, 2 when past max_wraps walls.
+    auto leap = [&](double t_new) __attribute__((always_inline)) {
+        t = t_new;
+        const int wraps_before = wraps;
+        // When the leap crossed a side wall in x and in y (it can cross both).
+        double wall_tx = kInf, wall_ty = kInf;
+        double px = ox + t * d.x, py = oy + t * d.y;
+        if (px > period || (px == period && !(d.x < 0)) || px < 0 || (px == 0 && d.x < 0)) {
+            const bool over = px >= period;
+            wall_tx = ((over ? period : 0.0) - ox) * inv_dx;
+            px += over ? -period : period, ox += over ? -period : period;
+            ++wraps;
+        }
+        if (py > period || (py == period && !(d.y < 0)) || py < 0 || (py == 0 && d.y < 0)) {
+            const bool over = py >= period;
+            wall_ty = ((over ? period : 0.0) - oy) * inv_dy;
+            py += over ? -period : period, oy += over ? -period : period;
+            ++wraps;
+        }
+        if (beyond(oz + t * d.z)) {
+            // Out through the top (or bottom) plane: only the walls crossed before it count.
+            const double plane_t = ((d.z > 0 ? z_top : z_bottom) - oz) * inv_dz;
+            wraps = wraps_before + int(wall_tx < plane_t) + int(wall_ty < plane_t);
+            return 1;
+        }
+        if (wraps > max_wraps) return 2;
+        cx = cell_of(px, d.x, line, n, inv_spacing_);
+        cy = cell_of(py, d.y, line, n, inv_spacing_);
+        return 0;
+    };
+    // A ray of the beam starts where its block of origins is known clear.
+    if (beam && beam->width > 0 && oz == beam->z_start && d.x == beam->d.x && d.y == beam->d.y &&
+        d.z == beam->d.z) {
+        const double t0 =
+            beam->t[size_t(cy >> beam->shift) * size_t(beam->width) + size_t(cx >> beam->shift)];
+        if (t0 > 0)
+            if (const int left = leap(t0)) return left == 1 ? escaped() : lost();
+    }
     for (;;) {
         if (level == 0) {
             // Cell by cell, near the surface: the cell's four corners bound its two triangles.
@@ -387,40 +506,9 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
                         if (s_k < jump_t[k]) break;
                     }
                     if (step > min_jump_t) {
-                        t += step;
                         ++skipped;
-                        const int wraps_before = wraps;
-                        // When this jump crossed a side wall in x and in y (it can cross both).
-                        double wall_tx = kInf, wall_ty = kInf;
-                        double px = ox + t * d.x, py = oy + t * d.y;
-                        if (px > period || (px == period && !(d.x < 0)) || px < 0 ||
-                            (px == 0 && d.x < 0)) {
-                            const bool over = px >= period;
-                            wall_tx = ((over ? period : 0.0) - ox) * inv_dx;
-                            px += over ? -period : period, ox += over ? -period : period;
-                            ++wraps;
-                        }
-                        if (py > period || (py == period && !(d.y < 0)) || py < 0 ||
-                            (py == 0 && d.y < 0)) {
-                            const bool over = py >= period;
-                            wall_ty = ((over ? period : 0.0) - oy) * inv_dy;
-                            py += over ? -period : period, oy += over ? -period : period;
-                            ++wraps;
-                        }
-                        const double z = oz + t * d.z;
-                        if (beyond(z)) {
-                            // Out through the top (or bottom) plane: only the walls crossed
-                            // before it count.
-                            const double plane_t = ((d.z > 0 ? z_top : z_bottom) - oz) * inv_dz;
-                            wraps = wraps_before + int(wall_tx < plane_t) + int(wall_ty < plane_t);
-                            return escaped();
-                        }
-                        if (wraps > max_wraps) {
-                            return lost();
-                        }
                         const int jumped_x = cx, jumped_y = cy;
-                        cx = cell_of(px, d.x, line, n, inv_spacing_);
-                        cy = cell_of(py, d.y, line, n, inv_spacing_);
+                        if (const int left = leap(t + step)) return left == 1 ? escaped() : lost();
                         // Jumps count as clear cells: a grazing ray far above the surface
                         // climbs the pyramid instead of jumping r cells at a time (256^2,
                         // theta_i 89 deg: +17 % beam rays/s on one thread).

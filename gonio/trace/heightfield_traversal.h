@@ -32,6 +32,17 @@ struct TraversalHit {
     int wraps = 0;     // side walls crossed before the hit or the escape
 };
 
+// A beam: rays of one direction `d`, going down, that start on the plane z = z_start. Per block of
+// 2^shift x 2^shift cells of origins, a distance along the ray that every ray starting over the
+// block travels clear of the surface, so that its walk starts there (built by
+// HeightfieldTraversal::beam_entry; empty, width 0, where it would not pay).
+struct BeamEntry {
+    Vec3 d;
+    double z_start = 0;
+    int shift = 0, width = 0;
+    std::vector<float> t; // width^2, row-major
+};
+
 class HeightfieldTraversal {
   public:
     explicit HeightfieldTraversal(const HeightField& surface);
@@ -40,8 +51,13 @@ class HeightfieldTraversal {
     // meets at t >= 0, from either side, crossing the side walls natively (at most max_wraps
     // times, else kind = lost), or until it passes the plane z_top going up or z_bottom going
     // down (escaped_up / escaped_down).
-    TraversalHit trace(const Vec3& o, const Vec3& d, double z_top, double z_bottom,
-                       int max_wraps) const;
+    // A ray of `beam` (its direction, starting on its plane) starts at its block's clear
+    // distance; any other ray ignores it.
+    TraversalHit trace(const Vec3& o, const Vec3& d, double z_top, double z_bottom, int max_wraps,
+                       const BeamEntry* beam = nullptr) const;
+
+    // The clear distances of a beam of direction d (d.z < 0) from the plane z = z_start.
+    BeamEntry beam_entry(const Vec3& d, double z_start) const;
 
     // The triangulated surface's height at (x, y), from the traversed vertices.
     double height_at(double x, double y) const;
@@ -77,11 +93,16 @@ class HeightfieldTraversal {
     std::vector<float> dilated_[kJumps];
     int dilated_width_[kJumps] = {0, 0};
     int jumps_ = 0; // the sizes that fit the grid
+    // For beam_entry, blocks of b = 2^kBeamShift cells: per cell (i, j) the maximum of the
+    // heights of vertices i - 1 .. i + b + 3 by j - 1 .. j + b + 3 (periodic), which hold every
+    // cell a block's rays cross over one cell of travel from cell (i, j) on, with a cell to spare.
+    static constexpr int kBeamShift = 2;
+    std::vector<float> beam_window_;
 
     // The walk, for one orientation of the ray's sheared frame (kz: the dominant axis).
     template <int KX, int KY, int KZ>
-    TraversalHit walk(const Vec3& o, const Vec3& d, double z_top, double z_bottom,
-                      int max_wraps) const;
+    TraversalHit walk(const Vec3& o, const Vec3& d, double z_top, double z_bottom, int max_wraps,
+                      const BeamEntry* beam) const;
 };
 
 } // namespace gonio

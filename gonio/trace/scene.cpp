@@ -150,7 +150,12 @@ SegmentHit Scene::intersect(const float o[3], const float d[3]) const {
     return h;
 }
 
-SurfaceHit Scene::trace(Vec3 o, const Vec3& d, bool below, int max_wraps) const {
+BeamEntry Scene::beam_entry(const Vec3& dir) const {
+    return walk_ ? walk_->beam_entry(dir, z_max_ + epsilon_) : BeamEntry{};
+}
+
+SurfaceHit Scene::trace(Vec3 o, const Vec3& d, bool below, int max_wraps,
+                        const BeamEntry* beam) const {
     SurfaceHit r;
     const double side = below ? -1.0 : 1.0; // the ray's side of the surface: +1 above, -1 below
     // The origin as the backend sees it: Embree in float, the traversal in double.
@@ -182,17 +187,17 @@ SurfaceHit Scene::trace(Vec3 o, const Vec3& d, bool below, int max_wraps) const 
         }
     }
     if (walk_)
-        trace_heightfield(o, d, side, max_wraps, r);
+        trace_heightfield(o, d, side, max_wraps, beam, r);
     else
         trace_embree(o, d, side, max_wraps, r);
     return r;
 }
 
 void Scene::trace_heightfield(Vec3 o, const Vec3& d, double side, int max_wraps,
-                              SurfaceHit& r) const {
+                              const BeamEntry* beam, SurfaceHit& r) const {
     for (;;) {
         const TraversalHit h =
-            walk_->trace(o, d, z_max_ + epsilon_, z_min_ - epsilon_, max_wraps - r.wraps);
+            walk_->trace(o, d, z_max_ + epsilon_, z_min_ - epsilon_, max_wraps - r.wraps, beam);
         r.wraps += h.wraps;
         if (h.kind == TraversalHit::escaped_up || h.kind == TraversalHit::escaped_down) {
             r.kind = h.kind == TraversalHit::escaped_up ? SurfaceHit::escaped_up

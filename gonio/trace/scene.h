@@ -68,8 +68,15 @@ class Scene {
     // `below`: the ray travels under the surface (inside a transmissive material), so it meets
     // facets from below and leaves through the bottom plane. max_wraps bounds near-horizontal
     // rays (kind = lost when exceeded).
-    SurfaceHit trace(Vec3 origin, const Vec3& dir, bool below = false,
-                     int max_wraps = 1 << 20) const;
+    // `beam` (from beam_entry): a ray of the beam starts its walk where its origin's block is
+    // clear of the surface (the same hit, fewer steps; the Embree backend ignores it).
+    static constexpr int kMaxWraps = 1 << 20;
+    SurfaceHit trace(Vec3 origin, const Vec3& dir, bool below = false, int max_wraps = kMaxWraps,
+                     const BeamEntry* beam = nullptr) const;
+
+    // For a beam of unit direction dir (going down) from the top plane, z_max() + epsilon():
+    // what trace() needs to start its rays lower (empty for the Embree backend).
+    BeamEntry beam_entry(const Vec3& dir) const;
 
     TraceBackend backend() const { return backend_; }
     // What the acceleration structure holds: Embree's allocations (vertices, BVH) or the
@@ -93,7 +100,7 @@ class Scene {
     void trace_embree(Vec3 origin, const Vec3& dir, double side, int max_wraps,
                       SurfaceHit& r) const;
     void trace_heightfield(Vec3 origin, const Vec3& dir, double side, int max_wraps,
-                           SurfaceHit& r) const;
+                           const BeamEntry* beam, SurfaceHit& r) const;
 
     TraceBackend backend_;
     std::size_t memory_bytes_ = 0;
