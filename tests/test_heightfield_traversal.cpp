@@ -219,6 +219,7 @@ TEST_CASE("a beam's rays start where their block is clear, and meet the same fac
     auto equal = [](const Vec3& p, const Vec3& q) {
         return p.x == q.x && p.y == q.y && p.z == q.z;
     };
+    const int per_beam = 10000;
     long long rays = 0, differ = 0, tables = 0;
     for (int n : {64, 256})
         for (int k = 0; k < 5; ++k) {
@@ -230,10 +231,11 @@ TEST_CASE("a beam's rays start where their block is clear, and meet the same fac
             std::uniform_real_distribution<double> u(0, 1);
             for (double theta : {0.0, 30.0, 60.0, 75.0, 85.0, 88.0}) {
                 const Vec3 d = -spherical_direction(radians(theta), 2 * kPi * u(rng));
-                const BeamEntry beam = walk.beam_entry(d);
+                const BeamEntry beam = walk.beam_entry(d, per_beam);
+                CHECK(walk.beam_entry(d, 1).width == 0); // too few rays to pay for a table
                 tables += beam.width > 0;
                 double skipped = 0, travelled = 0;
-                for (int r = 0; r < 10000; ++r) {
+                for (int r = 0; r < per_beam; ++r) {
                     const Vec3 o{u(rng) * walk.period(), u(rng) * walk.period(),
                                  walk.z_max() + walk.epsilon()};
                     const SurfaceHit a = walk.trace(o, d);
@@ -253,7 +255,7 @@ TEST_CASE("a beam's rays start where their block is clear, and meet the same fac
                 CAPTURE(n);
                 CAPTURE(alpha);
                 CAPTURE(theta);
-                // Steep beams skip most of their way down (measured: 0.4-0.8 of it).
+                // They skip a good part of the way down (measured: 0.31-0.97 of it).
                 if (theta <= 60 && beam.width > 0) CHECK(skipped > 0.25 * travelled);
             }
         }

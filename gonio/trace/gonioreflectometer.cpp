@@ -20,7 +20,7 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
     const Vec3 down = -wi;
     const bool transmits = material.transmits();
     // Every batch's beam rays start on the top plane along `down`: they may start lower.
-    const BeamEntry beam = scene.beam_entry(down);
+    const BeamEntry beam = scene.beam_entry(down, std::max(1LL, st.rays));
 
     auto trace_block = [&](long long id, long long first, long long last, BlockOutput& o) {
         o.clear(nc);

@@ -122,40 +122,45 @@ HeightfieldTraversal::HeightfieldTraversal(const HeightField& s) : n_(s.n) {
         jumps_ = k + 1;
     }
 
-    // The beam windows: the maximum along x over each row, then along y over those (periodic).
+    // The beam windows: the maximum along x over each row, then along y over those (periodic),
+    // at every other cell.
     {
-        const int span = (1 << kBeamShift) + 5;             // vertices i - 1 .. i + b + 3
+        const int span = (1 << kBeamShift) + 6; // vertices i - 1 .. i + b + 4
+        const int w = (n + 1) / 2;
         std::vector<int> wrapped(size_t(n) + size_t(span)); // (i - 1) mod n, i in [0, n + span)
         for (int i = 0; i < n + span; ++i) wrapped[size_t(i)] = (i - 1 + n) % n;
-        std::vector<float> rows(size_t(n) * size_t(n));
-        beam_window_.resize(size_t(n) * size_t(n));
+        std::vector<float> rows(size_t(n) * size_t(w));
+        beam_window_.resize(size_t(w) * size_t(w));
         tbb::parallel_for(0, n, [&](int y) {
             const float* row = h_.data() + size_t(y) * size_t(v);
-            for (int i = 0; i < n; ++i) {
-                float c = row[wrapped[size_t(i)]];
-                for (int k = 1; k < span; ++k) c = std::max(c, row[wrapped[size_t(i + k)]]);
-                rows[size_t(y) * size_t(n) + size_t(i)] = c;
+            for (int i = 0; i < w; ++i) {
+                float c = row[wrapped[size_t(2 * i)]];
+                for (int k = 1; k < span; ++k) c = std::max(c, row[wrapped[size_t(2 * i + k)]]);
+                rows[size_t(y) * size_t(w) + size_t(i)] = c;
             }
         });
-        tbb::parallel_for(0, n, [&](int j) {
-            float* out = beam_window_.data() + size_t(j) * size_t(n);
-            const float* first = rows.data() + size_t(wrapped[size_t(j)]) * size_t(n);
-            std::copy(first, first + n, out);
+        tbb::parallel_for(0, w, [&](int j) {
+            float* out = beam_window_.data() + size_t(j) * size_t(w);
+            const float* first = rows.data() + size_t(wrapped[size_t(2 * j)]) * size_t(w);
+            std::copy(first, first + w, out);
             for (int k = 1; k < span; ++k) {
-                const float* r = rows.data() + size_t(wrapped[size_t(j + k)]) * size_t(n);
-                for (int i = 0; i < n; ++i) out[i] = std::max(out[i], r[i]);
+                const float* r = rows.data() + size_t(wrapped[size_t(2 * j + k)]) * size_t(w);
+                for (int i = 0; i < w; ++i) out[i] = std::max(out[i], r[i]);
             }
         });
     }
 }
 
-BeamEntry HeightfieldTraversal::beam_entry(const Vec3& d, double z_start) const {
+BeamEntry HeightfieldTraversal::beam_entry(const Vec3& d, double z_start, long long rays) const {
     BeamEntry e;
     e.d = d, e.z_start = z_start, e.shift = kBeamShift;
     const double speed_xy = std::max(std::abs(d.x), std::abs(d.y));
     // Rays that cross many cells within the relief (grazing ones) have the pyramid instead.
     if (!(d.z < 0) || relief_ * inv_spacing_ * speed_xy > 128 * -d.z) return e;
     const int b = 1 << kBeamShift, w = (n_ + b - 1) >> kBeamShift;
+    // A block costs about what 1.5 rays save (1024^2, theta_i 60 deg: 520 instructions against
+    // 340 per beam ray, callgrind).
+    if (rays < 2 * (long long)w * w) return e;
     e.width = w;
     e.t.resize(size_t(w) * size_t(w));
     // Steps of just under one cell of travel, up to a quarter of the patch (so that the walk's
@@ -163,6 +168,7 @@ BeamEntry HeightfieldTraversal::beam_entry(const Vec3& d, double z_start) const 
     const double step = speed_xy > 0 ? 0.99 * spacing_ / speed_xy : kInf;
     const int steps = speed_xy > 0 ? std::max(1, n_ / 4) : 1;
     const int n = n_;
+    const size_t window = size_t(n + 1) / 2; // beam_window_ per row
     const double inv_dz = 1.0 / d.z;
     // The cell of coordinate v (v within a quarter period of the patch), periodic; truncation
     // with a correction is the floor (std::floor is a library call without SSE4.1).
@@ -182,7 +188,7 @@ BeamEntry HeightfieldTraversal::beam_entry(const Vec3& d, double z_start) const 
                 const double xa = speed_xy > 0 ? x0 + std::min(ta * d.x, tb * d.x) : x0;
                 const double ya = speed_xy > 0 ? y0 + std::min(ta * d.y, tb * d.y) : y0;
                 const double bound =
-                    double(beam_window_[size_t(cell(ya)) * size_t(n) + size_t(cell(xa))]) +
+                    double(beam_window_[size_t(cell(ya) >> 1) * window + size_t(cell(xa) >> 1)]) +
                     2 * pad_;
                 // Clear while the ray's height (falling) stays above the bound.
                 const double t_reach = (bound - z_start) * inv_dz;
@@ -402,7 +408,7 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
         d.z != 0 ? relief_ * inv_spacing_ * speed_xy * std::abs(inv_dz) : kInf;
     const int climb_after = slab_cells <= 64 ? std::numeric_limits<int>::max() : 4;
     // A jump of r cells of travel (less a hundredth of a cell for the grid lines' rounding).
-    const bool jump_ok = jumps_ > 0 && speed_xy > 0 && slab_cells <= 1024;
+    bool jump_ok = jumps_ > 0 && speed_xy > 0 && slab_cells <= 1024;
     double jump_t[kJumps] = {0, 0};
     const double min_jump_t = spacing_ * inv_speed; // shorter than a cell: walk it instead
     const float* dilated[kJumps] = {nullptr, nullptr};
@@ -475,8 +481,12 @@ TraversalHit HeightfieldTraversal::walk(const Vec3& o, const Vec3& d, double z_t
         d.z == beam->d.z) {
         const double t0 =
             beam->t[size_t(cy >> beam->shift) * size_t(beam->width) + size_t(cx >> beam->shift)];
-        if (t0 > 0)
+        if (t0 > 0) {
             if (const int left = leap(t0)) return left == 1 ? escaped() : lost();
+            // Within a few cells of its hit now: a jump would fail (measured at 1024^2,
+            // theta_i 60 deg: 4 in 10^4 of them did not, for 2.9 tries per ray).
+            jump_ok = false;
+        }
     }
     for (;;) {
         if (level == 0) {

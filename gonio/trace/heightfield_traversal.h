@@ -56,8 +56,9 @@ class HeightfieldTraversal {
     TraversalHit trace(const Vec3& o, const Vec3& d, double z_top, double z_bottom, int max_wraps,
                        const BeamEntry* beam = nullptr) const;
 
-    // The clear distances of a beam of direction d (d.z < 0) from the plane z = z_start.
-    BeamEntry beam_entry(const Vec3& d, double z_start) const;
+    // The clear distances of a beam of `rays` rays of direction d (d.z < 0) from the plane
+    // z = z_start (none when too few rays would use them to pay for them).
+    BeamEntry beam_entry(const Vec3& d, double z_start, long long rays) const;
 
     // The triangulated surface's height at (x, y), from the traversed vertices.
     double height_at(double x, double y) const;
@@ -93,9 +94,10 @@ class HeightfieldTraversal {
     std::vector<float> dilated_[kJumps];
     int dilated_width_[kJumps] = {0, 0};
     int jumps_ = 0; // the sizes that fit the grid
-    // For beam_entry, blocks of b = 2^kBeamShift cells: per cell (i, j) the maximum of the
-    // heights of vertices i - 1 .. i + b + 3 by j - 1 .. j + b + 3 (periodic), which hold every
-    // cell a block's rays cross over one cell of travel from cell (i, j) on, with a cell to spare.
+    // For beam_entry, blocks of b = 2^kBeamShift cells: per even cell (i, j) the maximum of the
+    // heights of vertices i - 1 .. i + b + 4 by j - 1 .. j + b + 4 (periodic), which hold every
+    // cell a block's rays cross over one cell of travel from cell (i, j) or (i + 1, j + 1) on,
+    // with a cell to spare; ceil(n / 2)^2 of them.
     static constexpr int kBeamShift = 2;
     std::vector<float> beam_window_;
 

@@ -150,8 +150,8 @@ SegmentHit Scene::intersect(const float o[3], const float d[3]) const {
     return h;
 }
 
-BeamEntry Scene::beam_entry(const Vec3& dir) const {
-    return walk_ ? walk_->beam_entry(dir, z_max_ + epsilon_) : BeamEntry{};
+BeamEntry Scene::beam_entry(const Vec3& dir, long long rays) const {
+    return walk_ ? walk_->beam_entry(dir, z_max_ + epsilon_, rays) : BeamEntry{};
 }
 
 SurfaceHit Scene::trace(Vec3 o, const Vec3& d, bool below, int max_wraps,

@@ -74,9 +74,9 @@ class Scene {
     SurfaceHit trace(Vec3 origin, const Vec3& dir, bool below = false, int max_wraps = kMaxWraps,
                      const BeamEntry* beam = nullptr) const;
 
-    // For a beam of unit direction dir (going down) from the top plane, z_max() + epsilon():
-    // what trace() needs to start its rays lower (empty for the Embree backend).
-    BeamEntry beam_entry(const Vec3& dir) const;
+    // For a beam of `rays` rays of unit direction dir (going down) from the top plane,
+    // z_max() + epsilon(): what trace() needs to start them lower (empty for the Embree backend).
+    BeamEntry beam_entry(const Vec3& dir, long long rays) const;
 
     TraceBackend backend() const { return backend_; }
     // What the acceleration structure holds: Embree's allocations (vertices, BVH) or the
