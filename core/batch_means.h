@@ -33,13 +33,22 @@ double batch_stderr(int B, const Value& value) {
     return std::sqrt(ss / (double(B) * double(B - 1)));
 }
 
-// Element-wise standard errors of batches stored [batch][n].
+// Element-wise standard errors of batches stored [batch][n]: what batch_stderr(B, value) gives
+// for each element, the same sums in the same order, taken a batch row at a time (in cache).
 inline std::vector<double> batch_stderr(const std::vector<double>& batches, int B) {
     const size_t n = batches.size() / size_t(B);
-    std::vector<double> err(n);
-    for (size_t i = 0; i < n; ++i)
-        err[i] = batch_stderr(B, [&](int b) { return batches[size_t(b) * n + i]; });
-    return err;
+    if (B < 2) return std::vector<double>(n, 0.0);
+    std::vector<double> mean(n, 0.0), ss(n, 0.0);
+    for (int b = 0; b < B; ++b)
+        for (size_t i = 0; i < n; ++i) mean[i] += batches[size_t(b) * n + i];
+    for (double& m : mean) m /= B;
+    for (int b = 0; b < B; ++b)
+        for (size_t i = 0; i < n; ++i) {
+            const double v = batches[size_t(b) * n + i] - mean[i];
+            ss[i] += v * v;
+        }
+    for (double& e : ss) e = std::sqrt(e / (double(B) * double(B - 1)));
+    return ss;
 }
 
 // Batches stored [batch][order][n]: per batch, the sum of orders from..to-1, stored [batch][n]
