@@ -227,7 +227,7 @@ int main(int argc, char** argv) {
     std::string mode = "speed";
     bool quick = false;
     long long rays = -1;
-    int repeats = 2, only_size = 0;
+    int repeats = 3, only_size = 0;
     bool bare = false;
     std::string only_backend; // for profiling one backend
     double only_theta = -1;

@@ -3,7 +3,9 @@
 // triangles per cell that Embree's grid geometry holds (the same (v0, v1, v3), (v2, v3, v1) split
 // and the same float vertices), walked cell by cell along the ray, jumping clear stretches with
 // dilated min-max blocks and, for rays that cross many cells within the relief (grazing ones), a
-// min-max pyramid over the grid; native wrapping through the side walls.
+// min-max pyramid over the grid; native wrapping through the side walls. The rays of a beam
+// (one direction, one start plane) start where their block of origins is known clear
+// (beam_entry).
 //
 // Watertight by construction: every vertex is projected into the ray's sheared frame once per
 // test from the same inputs, and the edge function of a shared edge is computed from the same two

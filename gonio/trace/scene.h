@@ -63,6 +63,8 @@ class Scene {
     // Scale of the coordinates, for offsetting ray origins off the surface.
     double epsilon() const { return epsilon_; }
 
+    static constexpr int kMaxWraps = 1 << 20; // side walls a ray may cross by default
+
     // Follows the ray from `origin` (inside the box or on its top plane) along unit `dir` to the
     // first facet it hits, wrapping through the side walls, or to where it leaves the box.
     // `below`: the ray travels under the surface (inside a transmissive material), so it meets
@@ -70,7 +72,6 @@ class Scene {
     // rays (kind = lost when exceeded).
     // `beam` (from beam_entry): a ray of the beam starts its walk where its origin's block is
     // clear of the surface (the same hit, fewer steps; the Embree backend ignores it).
-    static constexpr int kMaxWraps = 1 << 20;
     SurfaceHit trace(Vec3 origin, const Vec3& dir, bool below = false, int max_wraps = kMaxWraps,
                      const BeamEntry* beam = nullptr) const;
 
