@@ -264,6 +264,52 @@ TEST_CASE("a beam's rays start where their block is clear, and meet the same fac
     CHECK(differ == 0);
 }
 
+TEST_CASE("the walk compiled for AVX2 gives the baseline walk's results bit for bit") {
+    // Rays from anywhere in the box, either way and many grazing, and a beam's rays with their
+    // start table: every field of every result equal.
+    if (!HeightfieldTraversal::avx2_supported()) {
+        MESSAGE("this processor has no AVX2: only the baseline walk runs here");
+        return;
+    }
+    auto equal = [](const Vec3& p, const Vec3& q) {
+        return p.x == q.x && p.y == q.y && p.z == q.z;
+    };
+    long long rays = 0, differ = 0, hits = 0;
+    for (int k = 0; k < 4; ++k) {
+        const HeightField surface =
+            surface_of(*ndf_of(k % 2 == 1, k < 2 ? 0.3 : 1.5), k < 2 ? 64 : 256, 30 + k);
+        HeightfieldTraversal avx2(surface), baseline(surface);
+        baseline.use_avx2(false);
+        CHECK(avx2.uses_avx2());
+        CHECK_FALSE(baseline.uses_avx2());
+        double lo = 1e300, hi = -1e300;
+        for (int j = 0; j <= surface.n; ++j)
+            for (int i = 0; i <= surface.n; ++i)
+                lo = std::min(lo, baseline.vertex(i, j).z),
+                hi = std::max(hi, baseline.vertex(i, j).z);
+        const double top = hi + 1e-3, bottom = lo - 1e-3, L = baseline.period();
+        std::mt19937_64 rng(std::uint64_t(40 + k));
+        std::uniform_real_distribution<double> u(0, 1);
+        const Vec3 beam_d = -spherical_direction(radians(55.0), 0.7);
+        const BeamEntry beam = avx2.beam_entry(beam_d, top, 1 << 20);
+        for (int r = 0; r < 100000; ++r) {
+            const bool from_beam = r % 4 == 0;
+            const Vec3 d = from_beam ? beam_d : mostly_grazing(rng, u(rng) < 0.5 ? 1 : -1);
+            const Vec3 o{u(rng) * L, u(rng) * L, from_beam ? top : lo + (hi - lo) * u(rng)};
+            const TraversalHit a = avx2.trace(o, d, top, bottom, 1000, &beam);
+            const TraversalHit b = baseline.trace(o, d, top, bottom, 1000, &beam);
+            ++rays;
+            hits += a.kind == TraversalHit::hit;
+            differ += !(a.kind == b.kind && a.t == b.t && equal(a.position, b.position) &&
+                        equal(a.normal, b.normal) && a.cell_x == b.cell_x && a.cell_y == b.cell_y &&
+                        a.triangle == b.triangle && a.wraps == b.wraps);
+        }
+    }
+    MESSAGE(rays << " rays, " << hits << " hits, " << differ << " differ");
+    CHECK(hits > rays / 4);
+    CHECK(differ == 0);
+}
+
 TEST_CASE("whole runs with either backend agree within their Monte Carlo error, ledgers closed") {
     const BeckersSensor sensor(578);
     const SpecularReflector mirror(FresnelTerm::mirror());

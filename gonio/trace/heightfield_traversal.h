@@ -72,6 +72,12 @@ class HeightfieldTraversal {
     }
     std::size_t memory_bytes() const;
 
+    // The walk runs as compiled for AVX2 where the processor has it (the same results bit for
+    // bit); use_avx2(false) picks the baseline x86-64 one (for the tests and the benchmark).
+    static bool avx2_supported();
+    void use_avx2(bool on);
+    bool uses_avx2() const { return avx2_; }
+
   private:
     int n_ = 0;
     double inv_spacing_ = 1, spacing_ = 1;
@@ -103,10 +109,23 @@ class HeightfieldTraversal {
     static constexpr int kBeamShift = 2;
     std::vector<float> beam_window_;
 
-    // The walk, for one orientation of the ray's sheared frame (kz: the dominant axis).
+    bool avx2_ = false; // the walk compiled for AVX2 (the same results)
+
+    // The walk for the ray's orientation, in the chosen instruction set.
+    template <bool Avx2>
+    TraversalHit oriented(const Vec3& o, const Vec3& d, double z_top, double z_bottom,
+                          int max_wraps, const BeamEntry* beam) const;
+    template <bool Avx2, int KX, int KY, int KZ>
+    TraversalHit walk_on(const Vec3& o, const Vec3& d, double z_top, double z_bottom, int max_wraps,
+                         const BeamEntry* beam) const;
+    // The walk, for one orientation of the ray's sheared frame (kz: the dominant axis), for any
+    // x86-64 and for AVX2 (heightfield_walk.inc, compiled twice).
     template <int KX, int KY, int KZ>
     TraversalHit walk(const Vec3& o, const Vec3& d, double z_top, double z_bottom, int max_wraps,
                       const BeamEntry* beam) const;
+    template <int KX, int KY, int KZ>
+    TraversalHit walk_avx2(const Vec3& o, const Vec3& d, double z_top, double z_bottom,
+                           int max_wraps, const BeamEntry* beam) const;
 };
 
 } // namespace gonio
