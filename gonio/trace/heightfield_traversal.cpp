@@ -280,7 +280,11 @@ namespace {
 } // namespace
 
 bool HeightfieldTraversal::avx2_supported() {
+#if defined(__x86_64__)
     return __builtin_cpu_supports("avx2");
+#else
+    return false; // walk_avx2 is then the baseline walk again
+#endif
 }
 
 void HeightfieldTraversal::use_avx2(bool on) {
@@ -331,11 +335,15 @@ TraversalHit HeightfieldTraversal::walk_on(const Vec3& o, const Vec3& d, double 
 
 // The same walk for AVX2 (three-operand instructions, inline rounding): without FMA, the same
 // operations, so the same results bit for bit; chosen at run time where the processor has it.
+#if defined(__x86_64__)
 #pragma GCC push_options
 #pragma GCC target("avx2")
+#endif
 #define GONIO_WALK walk_avx2
 #include "gonio/trace/heightfield_walk.inc"
 #undef GONIO_WALK
+#if defined(__x86_64__)
 #pragma GCC pop_options
+#endif
 
 } // namespace gonio
