@@ -38,10 +38,8 @@ double batch_stderr(int B, const Value& value) {
 inline std::vector<double> batch_stderr(const std::vector<double>& batches, int B) {
     const size_t n = batches.size() / size_t(B);
     if (B < 2) return std::vector<double>(n, 0.0);
-    std::vector<double> mean(n, 0.0), ss(n, 0.0);
-    for (int b = 0; b < B; ++b)
-        for (size_t i = 0; i < n; ++i) mean[i] += batches[size_t(b) * n + i];
-    for (double& m : mean) m /= B;
+    const std::vector<double> mean = batch_mean(batches, B);
+    std::vector<double> ss(n, 0.0);
     for (int b = 0; b < B; ++b)
         for (size_t i = 0; i < n; ++i) {
             const double v = batches[size_t(b) * n + i] - mean[i];
