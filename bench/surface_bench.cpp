@@ -17,6 +17,7 @@
 #include "heightfield/ndf/ggx.h"
 #include "heightfield/ndf/sinc_ndf.h"
 #include "heightfield/ndf/student_t.h"
+#include "heightfield/surface_generator.h"
 #include "heightfield/surface_metrics.h"
 
 #include <cmath>
@@ -61,7 +62,7 @@ int main(int argc, char** argv) {
             if (generator == "algorithm1" && n > 512) break;
             const double peak = run_isolated([&] {
                 SurfaceSpec spec;
-                spec.generator = generator_named(generator);
+                spec.generator = &generator_named(generator);
                 spec.size = n;
                 spec.iterations = iterations;
                 GenerationLog log;

@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
     const std::string order_name =
         argc >= 5 && std::string(argv[3]) == "--order" ? argv[4] : "linf";
     try {
-        const TableOrder order = table_order_named(order_name);
+        const TableOrder order = enum_named<TableOrder>(order_name);
         const ResultCase sweep = read_result_case(argv[1], "");
         const ResultCase held = read_result_case(argv[2], "");
         const BsdfTable table(table_data(sweep, order));

@@ -106,10 +106,10 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
     for (int n : sizes) {
         const HeightField surface = surface_of(Beckmann(0.75), n);
         auto t0 = Clock::now();
-        Scene embree(surface, TraceBackend::embree);
+        Scene embree(surface, embree_backend());
         const double embree_build = seconds_since(t0);
         t0 = Clock::now();
-        const Scene walk(surface, TraceBackend::heightfield);
+        const Scene walk(surface, heightfield_backend());
         const double walk_build = seconds_since(t0);
         char line[200];
         std::snprintf(line, sizeof line, "%6d %14.1f %10.3f %14.1f %10.3f %8.1f %10.1f", n,
@@ -125,8 +125,7 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
                 Rate e, h;
                 for (int r = 0; r < repeats; ++r)
                     for (const Scene* s : {static_cast<const Scene*>(&embree), &walk}) {
-                        if (!only_backend.empty() && only_backend != backend_name(s->backend()))
-                            continue;
+                        if (!only_backend.empty() && only_backend != s->backend().name) continue;
                         const auto t = Clock::now();
                         const TraceResult res = trace_incidence(*s, mirror, sensor, wi, st);
                         const double sec = seconds_since(t);
@@ -189,8 +188,8 @@ int hits(bool quick, long long rays, int only_size) {
         else
             ndf = std::make_unique<Beckmann>(c.alpha);
         const HeightField surface = surface_of(*ndf, c.n);
-        Scene embree(surface, TraceBackend::embree);
-        const Scene walk(surface, TraceBackend::heightfield);
+        Scene embree(surface, embree_backend());
+        const Scene walk(surface, heightfield_backend());
         for (double theta : thetas) {
             std::vector<float> segments;
             {

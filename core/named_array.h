@@ -2,10 +2,11 @@
 // A small N-D array of doubles with named dimensions, row-major (the last dimension varies
 // fastest), with the units and long name it is stored under. Results are held in these so that
 // their layout is data, not a comment: the writer maps each dimension name to the file's scale of
-// that name. Every index is checked.
+// that name. Every index is checked (GONIO_CHECK: a wrong index is a bug).
+#include "core/check.h"
+
 #include <cstddef>
 #include <initializer_list>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -23,9 +24,7 @@ struct Array {
           std::string long_name_ = "")
         : dims(std::move(dims_)), shape(std::move(shape_)), units(std::move(units_)),
           long_name(std::move(long_name_)) {
-        if (dims.size() != shape.size())
-            throw std::logic_error("Array: " + std::to_string(dims.size()) + " names for " +
-                                   std::to_string(shape.size()) + " dimensions");
+        GONIO_CHECK(dims.size() == shape.size());
         data.assign(count(0), 0.0);
     }
 
@@ -40,7 +39,8 @@ struct Array {
     size_t axis(const std::string& dim) const {
         for (size_t k = 0; k < dims.size(); ++k)
             if (dims[k] == dim) return k;
-        throw std::out_of_range("Array: no dimension " + dim);
+        GONIO_CHECK_MSG(false, "no dimension " + dim);
+        return 0;
     }
     size_t extent(const std::string& dim) const { return shape[axis(dim)]; }
     // Elements in one index of dimension `from - 1`: the product of the extents from `from` on.
@@ -52,12 +52,11 @@ struct Array {
 
     // The flat offset of the leading indices (fewer than rank: the start of that block).
     size_t offset(std::initializer_list<size_t> index) const {
-        if (index.size() > shape.size()) throw std::out_of_range("Array: too many indices");
+        GONIO_CHECK(index.size() <= shape.size());
         size_t at = 0, k = 0;
         for (size_t i : index) {
-            if (i >= shape[k])
-                throw std::out_of_range("Array: index " + std::to_string(i) + " of " + dims[k] +
-                                        " out of [0, " + std::to_string(shape[k]) + ")");
+            GONIO_CHECK_MSG(i < shape[k], "index " + std::to_string(i) + " of " + dims[k] +
+                                              " out of [0, " + std::to_string(shape[k]) + ")");
             at = at * shape[k] + i;
             ++k;
         }
@@ -74,9 +73,8 @@ struct Array {
     // ... and overwritten (its size must match).
     void put(std::initializer_list<size_t> leading, const std::vector<double>& values) {
         const size_t from = offset(leading), n = count(leading.size());
-        if (values.size() != n)
-            throw std::length_error("Array: block of " + std::to_string(values.size()) +
-                                    " values where " + std::to_string(n) + " belong");
+        GONIO_CHECK_MSG(values.size() == n, "a block of " + std::to_string(values.size()) +
+                                                " values where " + std::to_string(n) + " belong");
         for (size_t k = 0; k < n; ++k) data[from + k] = values[k];
     }
 
@@ -87,9 +85,7 @@ struct Array {
 
   private:
     size_t element(std::initializer_list<size_t> index) const {
-        if (index.size() != shape.size())
-            throw std::out_of_range("Array: " + std::to_string(index.size()) + " indices for " +
-                                    std::to_string(shape.size()) + " dimensions");
+        GONIO_CHECK(index.size() == shape.size()); // an element, not a block
         return offset(index);
     }
 };

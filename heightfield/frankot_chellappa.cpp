@@ -1,13 +1,13 @@
 #include "heightfield/frankot_chellappa.h"
 
 #include "core/math.h"
+#include "core/parallel.h"
 
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
-#include <tbb/parallel_for.h>
 
 namespace gonio {
 
@@ -15,7 +15,7 @@ namespace {
 // FFTW runs its parallel loops on TBB's workers (fftw_threads_set_callback, FFTW >= 3.3.9), so
 // that FFTW's own thread pool and TBB's do not compete for the same cores.
 void tbb_parallel_loop(void* (*work)(char*), char* jobdata, size_t elsize, int njobs, void*) {
-    tbb::parallel_for(0, njobs, [&](int j) { work(jobdata + elsize * size_t(j)); });
+    parallel_for(0, njobs, [&](int j) { work(jobdata + elsize * size_t(j)); });
 }
 } // namespace
 
@@ -99,7 +99,7 @@ void FrankotChellappa::integrate() {
     fftwf_execute(forward_q_);
     fft_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
     const int w = n_ / 2 + 1;
-    tbb::parallel_for(0, n_, [&](int v) {
+    parallel_for(0, n_, [&](int v) {
         const float br = wy_ * dy_re_[v], bi = wy_ * dy_im_[v];
         fftwf_complex* P = spec_p_ + size_t(v) * w;
         const fftwf_complex* Q = spec_q_ + size_t(v) * w;

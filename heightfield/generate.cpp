@@ -1,9 +1,10 @@
 #include "heightfield/generate.h"
 
+#include "core/parallel.h"
 #include "core/random.h"
 #include "heightfield/constraint_geometry.h"
 #include "heightfield/frankot_chellappa.h"
-#include "heightfield/heitz_surface.h"
+#include "heightfield/surface_generator.h"
 #include "heightfield/surface_metrics.h"
 
 #include <algorithm>
@@ -13,7 +14,6 @@
 #include <memory>
 #include <stdexcept>
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
 namespace gonio {
@@ -30,7 +30,7 @@ void differentiate(const std::vector<float>& h, int n, std::vector<float>& p,
                    std::vector<float>& q) {
     p.resize(h.size());
     q.resize(h.size());
-    tbb::parallel_for(0, n, [&](int y) {
+    parallel_for(0, n, [&](int y) {
         const int y1 = (y + 1) % n;
         for (int x = 0; x < n; ++x) {
             const int x1 = (x + 1) % n;
@@ -50,7 +50,7 @@ void log_schwarz(const float* p, const float* q, int n, double threshold, Genera
     const int rows = (n + row_step - 1) / row_step;
     std::vector<double> row_sum(rows), row_above(rows);
     const float thr = float(threshold);
-    tbb::parallel_for(0, rows, [&](int r) {
+    parallel_for(0, rows, [&](int r) {
         const int y = r * row_step;
         const float* p0 = &p[size_t(y) * n];
         const float* p1 = &p[size_t((y + 1) % n) * n];
@@ -210,7 +210,7 @@ void sliced_step(const float* h, int n, double ax, double ay, double psi, const 
     float inv_width = float(bins) / std::max(hi - lo, 1e-30f);
     std::vector<float> block_lo(chunks), block_hi(chunks);
     auto bin_projections = [&] {
-        tbb::parallel_for(0, chunks, [&](int c) {
+        parallel_for(0, chunks, [&](int c) {
             auto& hist = w.part[c];
             hist.assign(bins, 0);
             float blo = std::numeric_limits<float>::max(), bhi = -blo;
@@ -252,7 +252,7 @@ void sliced_step(const float* h, int n, double ax, double ay, double psi, const 
     }
     // Pass 2: each gradient moves along e to its projection's image under the map.
     const float dx = float(std::cos(psi) * ax), dy = float(std::sin(psi) * ay);
-    tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& rows) {
+    parallel_for_ranges<int>(0, n, 1, [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y)
             move_row(&h[size_t(y) * n], &h[size_t((y + 1) % n) * n], n, ex, ey, lo, inv_width, bins,
                      w.map.data(), dx, dy, &p[size_t(y) * n], &q[size_t(y) * n]);
@@ -273,7 +273,7 @@ void sample_slope_pool(const Ndf& ndf, int n, std::uint64_t seed, std::vector<fl
                        std::vector<float>& q) {
     p.resize(size_t(n) * n);
     q.resize(size_t(n) * n);
-    tbb::parallel_for(0, n, [&](int y) {
+    parallel_for(0, n, [&](int y) {
         Rng rng{seed, 0x706f6f6cull /* "pool" */, std::uint64_t(y)};
         for (int x = 0; x < n; ++x) {
             const double u1 = rng.uniform(), u2 = rng.uniform();
@@ -285,23 +285,11 @@ void sample_slope_pool(const Ndf& ndf, int n, std::uint64_t seed, std::vector<fl
     });
 }
 
-HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int threads,
-                             GenerationLog* log, const ProgressFn& progress) {
-    const auto start = Clock::now();
+namespace {
+// R19 Algorithm 1, or its sliced-matching variant, on forward-difference Frankot-Chellappa.
+HeightField generate_matching(const Ndf& ndf, const SurfaceSpec& spec, int threads,
+                              GenerationLog* lg, const ProgressFn& progress, bool sliced) {
     const int n = spec.size;
-    GenerationLog local;
-    GenerationLog* lg = log ? log : &local;
-    *lg = GenerationLog{};
-    if (spec.generator == Generator::heitz) {
-        double ax, ay;
-        if (!ndf.gaussian_slopes(ax, ay))
-            throw std::invalid_argument("the heitz generator makes Beckmann surfaces only");
-        HeightField s = heitz_surface(n, ax, ay, spec.correlation_length, spec.seed);
-        for (float& v : s.h) v = float(v * spec.spacing);
-        s.spacing = spec.spacing;
-        lg->seconds = since(start);
-        return s;
-    }
     FrankotChellappa fc(n, threads);
 
     std::vector<float> pool_p, pool_q;
@@ -339,7 +327,6 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
     log_schwarz(p, q, n, spec.threshold, lg);
     integrate();
 
-    const bool sliced = spec.generator == Generator::sliced_matching;
     double ax = 1, ay = 1;
     std::unique_ptr<Quantiles> quantile;
     SlicedWork work;
@@ -352,8 +339,7 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
     auto direction_quantiles = [&](double psi) {
         std::vector<float> proj(cells);
         const float c = float(std::cos(psi)), sn = float(std::sin(psi));
-        tbb::parallel_for(size_t(0), cells,
-                          [&](size_t k) { proj[k] = pool_p[k] * c + pool_q[k] * sn; });
+        parallel_for(size_t(0), cells, [&](size_t k) { proj[k] = pool_p[k] * c + pool_q[k] * sn; });
         tbb::parallel_sort(proj.begin(), proj.end());
         return std::make_unique<Quantiles>(std::move(proj));
     };
@@ -373,7 +359,7 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
         // wide axis's residual into the narrow one, which the stretch amplifies, and the
         // iteration diverges.
         if (ax != ay) fc.set_metric(1 / (ax * ax), 1 / (ay * ay));
-    } else if (spec.generator == Generator::algorithm1) {
+    } else {
         assigned.resize(cells);
         for (size_t k = 0; k < cells; ++k) assigned[k] = int(k);
         if (constrained) {
@@ -387,9 +373,6 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
             }
             integrate();
         }
-    } else {
-        throw std::invalid_argument(std::string("generate_surface: cannot generate with ") +
-                                    name_of(spec.generator));
     }
 
     double best_distance = 1e30;
@@ -448,13 +431,80 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
             }
         }
     }
-    HeightField out(n, spec.spacing);
-    // The generator works in grid units (slopes per sample step); heights scale with the spacing.
-    const float* heights = fc.heights();
-    for (size_t k = 0; k < cells; ++k) out.h[k] = float(heights[k] * spec.spacing);
+    HeightField out(n, 1.0); // in grid units: generate_surface scales it
+    out.h.assign(fc.heights(), fc.heights() + cells);
     lg->fft_seconds = fc.fft_seconds();
-    lg->seconds = since(start);
     return out;
+}
+
+const Key kIterations =
+    Key::integer("iterations", {0, 1e6}, "iterations of the generator (R19: 500)").fallback(500.0);
+const Key kThreshold =
+    Key::number("threshold", {0, 1, true, false}, "Schwarz threshold of Algorithm 1 (R19: 0.02)")
+        .fallback(0.02)
+        .cited("R19 Eq. 19");
+const Key kStop = Key::boolean("stop_when_converged",
+                               "stop when the NDF distance (checked every 10 iterations) stops "
+                               "improving")
+                      .fallback(false);
+const Key kConstraint = Key::string("constraint", enum_names<Constraint>(),
+                                    "constrained generation: start from a lattice")
+                            .fallback("none")
+                            .cited("R19 section 5.3.2");
+const Key kLattice = Key::integer("lattice", {1, 8192}, "domes/holes: features per side")
+                         .fallback(8.0)
+                         .noting("at most size/2");
+const Key kRelief =
+    Key::number("relief", {1e-6, 100}, "domes/holes: height over radius").fallback(0.5);
+const std::vector<Key> kMatchingKeys{kIterations, kThreshold, kStop,
+                                     kConstraint, kLattice,   kRelief};
+
+void read_matching(TableReader& r, const Ndf&, SurfaceSpec& s) {
+    s.iterations = static_cast<int>(r.integer(kIterations));
+    s.threshold = r.number(kThreshold);
+    s.stop_when_converged = r.boolean(kStop);
+    s.constraint = enum_named<Constraint>(r.string(kConstraint));
+    if (s.constraint != Constraint::none) {
+        s.lattice = static_cast<int>(
+            r.integer(kLattice.name, {1, double(s.size / 2)}, (long long)*kLattice.number_default));
+        s.relief = r.number(kRelief);
+    }
+}
+// The common identity already holds the matching settings (iterations, threshold, ...).
+void no_more_identity(const SurfaceSpec&, std::ostream&) {}
+bool follows_unless_constrained(const SurfaceSpec& s) {
+    return s.constraint == Constraint::none;
+}
+} // namespace
+
+const SurfaceGenerator& sliced_matching_generator() {
+    static const SurfaceGenerator g{
+        "sliced-matching",
+        "iterative Frankot-Chellappa with sliced optimal-transport matching (the default)",
+        &kMatchingKeys,
+        read_matching,
+        [](const Ndf& ndf, const SurfaceSpec& s, int threads, GenerationLog* log,
+           const ProgressFn& progress) {
+            return generate_matching(ndf, s, threads, log, progress, true);
+        },
+        no_more_identity,
+        follows_unless_constrained};
+    return g;
+}
+
+const SurfaceGenerator& algorithm1_generator() {
+    static const SurfaceGenerator g{
+        "algorithm1",
+        "iterative Frankot-Chellappa with Schwarz-error rematching [R19 Algorithm 1]",
+        &kMatchingKeys,
+        read_matching,
+        [](const Ndf& ndf, const SurfaceSpec& s, int threads, GenerationLog* log,
+           const ProgressFn& progress) {
+            return generate_matching(ndf, s, threads, log, progress, false);
+        },
+        no_more_identity,
+        follows_unless_constrained};
+    return g;
 }
 
 } // namespace gonio

@@ -2,6 +2,8 @@
 
 #include "core/random.h"
 #include "heightfield/frankot_chellappa.h"
+#include "heightfield/ndf/ndf.h"
+#include "heightfield/surface_generator.h"
 
 #include <cmath>
 #include <fftw3.h>
@@ -58,6 +60,39 @@ HeightField heitz_surface(int n, double alpha_x, double alpha_y, double correlat
     const double scale = alpha_x / std::sqrt(2.0 * sum / (double(n) * n));
     for (float& v : s.h) v = float(v * scale);
     return s;
+}
+
+namespace {
+const Key kCorrelation =
+    Key::number("correlation_length", {0.5, 1e6}, "heitz: Gaussian correlation length, in samples")
+        .fallback(8.0);
+const std::vector<Key> kHeitzKeys{kCorrelation};
+} // namespace
+
+const SurfaceGenerator& heitz_generator() {
+    static const SurfaceGenerator g{
+        "heitz",
+        "random-phase Gaussian surface (Heitz 2015): Beckmann slopes only",
+        &kHeitzKeys,
+        [](TableReader& r, const Ndf& ndf, SurfaceSpec& s) {
+            double ax, ay;
+            if (!ndf.gaussian_slopes(ax, ay))
+                r.fail("generator", "\"heitz\" makes Beckmann surfaces only; this case's "
+                                    "ndf.type is \"" +
+                                        ndf.name() + "\"");
+            s.correlation_length = r.number(kCorrelation);
+        },
+        [](const Ndf& ndf, const SurfaceSpec& s, int, GenerationLog*, const ProgressFn&) {
+            double ax, ay;
+            if (!ndf.gaussian_slopes(ax, ay))
+                throw std::invalid_argument("the heitz generator makes Beckmann surfaces only");
+            return heitz_surface(s.size, ax, ay, s.correlation_length, s.seed);
+        },
+        [](const SurfaceSpec& s, std::ostream& o) {
+            o << "|correlation_length=" << s.correlation_length;
+        },
+        [](const SurfaceSpec&) { return true; }};
+    return g;
 }
 
 } // namespace gonio

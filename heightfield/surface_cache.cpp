@@ -1,5 +1,7 @@
 #include "heightfield/surface_cache.h"
 
+#include "heightfield/surface_generator.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -16,11 +18,11 @@ std::string surface_identity(const Ndf& ndf, const SurfaceSpec& s) {
     std::ostringstream o;
     o.precision(17);
     // Bump the version when a generator's output changes for the same inputs.
-    o << "gonio-surface v3|" << ndf.describe() << "|generator=" << name_of(s.generator)
+    o << "gonio-surface v3|" << ndf.describe() << "|generator=" << generator_name(s)
       << "|size=" << s.size << "|spacing=" << s.spacing << "|iterations=" << s.iterations
       << "|threshold=" << s.threshold << "|stop_when_converged=" << s.stop_when_converged
       << "|seed=" << s.seed;
-    if (s.generator == Generator::heitz) o << "|correlation_length=" << s.correlation_length;
+    if (s.generator) s.generator->identity(s, o); // what else defines its surfaces
     o << "|constraint=" << name_of(s.constraint);
     if (s.constraint != Constraint::none) o << "|lattice=" << s.lattice << "|relief=" << s.relief;
     return o.str();

@@ -50,7 +50,7 @@ ExrAttributes surface_attributes(const Ndf& ndf, const SurfaceSpec& spec,
     ExrAttributes a;
     a.text["gonio_identity"] = surface_identity(ndf, spec);
     a.text["gonio_ndf"] = ndf.describe();
-    a.text["gonio_generator"] = name_of(spec.generator);
+    a.text["gonio_generator"] = generator_name(spec);
     a.text["gonio_constraint"] = name_of(spec.constraint);
     a.text["gonio_seed"] = std::to_string(spec.seed);
     a.text["gonio_version"] = std::string(kVersion) + " (git " + kGitHash + ")";

@@ -3,6 +3,7 @@
 // goes into the cache key. The generators' keys are declared in surface_spec.cpp, where the
 // [surface] table is read.
 #include "core/config_key.h"
+#include "core/enum_names.h"
 #include "core/table_reader.h"
 
 #include <cstdint>
@@ -12,27 +13,29 @@
 namespace gonio {
 
 class Ndf;
+struct SurfaceGenerator;                     // surface_generator.h: the generators' registry
+const SurfaceGenerator* default_generator(); // sliced matching
 
-enum class Generator {
-    sliced_matching, // default: sliced optimal-transport matching (README)
-    algorithm1,      // R19 Algorithm 1 as published
-    heitz,           // a periodic random-phase Gaussian surface: Beckmann slopes (Heitz 2015)
-    input,           // a measured height or normal map (surface.input)
-};
 // Constrained generation [R19 5.3.2]: the gradient field starts from a square lattice of domes
 // or holes instead of a random assignment; the pool still follows the NDF.
 enum class Constraint { none, domes, holes };
+template <>
+struct EnumNames<Constraint> {
+    static constexpr const char* what = "constraint";
+    static constexpr const char* names[] = {"none", "domes", "holes"};
+};
 // Loaded maps: used as they are, or made periodic by tiling with mirror images.
 enum class Edges { periodic, mirror };
-
-const char* name_of(Generator g); // "sliced-matching", "algorithm1", "heitz", "input"
-const char* name_of(Constraint c);
-const char* name_of(Edges e);
-// The inverse, for tools and tests; throws std::invalid_argument.
-Generator generator_named(const std::string& name);
+template <>
+struct EnumNames<Edges> {
+    static constexpr const char* what = "edges";
+    static constexpr const char* names[] = {"periodic", "mirror"};
+};
 
 struct SurfaceSpec {
-    Generator generator = Generator::sliced_matching;
+    // How it is made; null for a measured map (input).
+    const SurfaceGenerator* generator = default_generator();
+    // The matching generators' settings (sliced-matching, algorithm1) and heitz's.
     Constraint constraint = Constraint::none;
     double correlation_length = 8.0;  // heitz: Gaussian correlation length, in samples
     int size = 256;                   // samples per side
@@ -50,6 +53,9 @@ struct SurfaceSpec {
     int realisations = 1;
     int max_realisations = 64; // with an accuracy target: how far it may grow the ensemble
 };
+
+// The generator's name, or "input" for a measured map.
+const char* generator_name(const SurfaceSpec& spec);
 
 // The seed of realisation r: `seed` itself for r = 0 (one surface is the surface of a run without
 // an ensemble), a hash of (seed, r) otherwise, so that two seeds share no surface.

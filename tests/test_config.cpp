@@ -1,5 +1,6 @@
 #include "core/config_error.h"
 #include "gonio/config/config.h"
+#include "heightfield/surface_generator.h"
 
 #include <algorithm>
 #include <doctest/doctest.h>
@@ -244,7 +245,7 @@ TEST_CASE("materials: channels follow what the material needs") {
 
 TEST_CASE("surface config: defaults, values and errors") {
     const Config d = parse_config(kBase, "t.toml");
-    CHECK(d.cases[0].surface.generator == Generator::sliced_matching);
+    CHECK(d.cases[0].surface.generator == &sliced_matching_generator());
     CHECK(d.cases[0].surface.size == 256);
     CHECK(d.cases[0].surface.iterations == 500);
     CHECK(d.cases[0].surface.threshold == 0.02);
@@ -253,7 +254,7 @@ TEST_CASE("surface config: defaults, values and errors") {
         parse_config(std::string(kBase) + "[surface]\ngenerator = \"algorithm1\"\nsize = 64\n"
                                           "constraint = \"domes\"\nlattice = 4\n",
                      "t.toml");
-    CHECK(c.cases[0].surface.generator == Generator::algorithm1);
+    CHECK(c.cases[0].surface.generator == &algorithm1_generator());
     CHECK(c.cases[0].surface.constraint == Constraint::domes);
     CHECK(c.cases[0].surface.lattice == 4);
     auto err = [](const std::string& extra) {
@@ -422,11 +423,11 @@ TEST_CASE("models per case: defaults by material, lists, what each needs, Ashikh
                                          "vcavity_rays = 1000\nmasking = \"v-cavity\"\n",
                                      "t.toml");
     CHECK(names(both) == std::vector<std::string>{"il", "vcavity"});
-    CHECK(both.cases[0].model.models[1].rays == 1000);
-    CHECK(both.cases[0].model.models[1].compared_with == "linf");
+    CHECK(contains(both.cases[0].model.models[1].description, "1000 paths per incidence"));
+    CHECK(both.cases[0].model.models[1].compared_with == ModelTarget::linf);
     CHECK(both.cases[0].model.masking == MaskingForm::v_cavity);
     const Config vc = parse_config(head + "[model]\nmodels = \"vcavity\"\n", "t.toml");
-    CHECK(vc.cases[0].model.models[0].rays == 1 << 20); // trace.rays
+    CHECK(contains(vc.cases[0].model.models[0].description, "1048576 paths")); // trace.rays
     // A model's own key without the model is a key no case uses.
     CHECK(contains(error_of(head + "[model]\nbody_points = 8\n").what(),
                    "key 'model.body_points': is not used"));
@@ -447,7 +448,7 @@ TEST_CASE("models per case: defaults by material, lists, what each needs, Ashikh
                "sigma = 0.4, correlation_width = 15, diffuse = \"metal\" }\n",
         "t.toml");
     CHECK(contains(a.cases[0].model.models[0].description, "velvet"));
-    CHECK(a.cases[0].model.models[0].compared_with == "linf"); // with a diffuse term
+    CHECK(a.cases[0].model.models[0].compared_with == ModelTarget::linf); // with a diffuse term
     const std::string ash = "[model]\nmodels = \"ashikhmin\"\n";
     CHECK(contains(error_of(head + ash + "ashikhmin = { diffuse = \"lambert\" }\n").what(),
                    "key 'model.ashikhmin.diffuse'"));

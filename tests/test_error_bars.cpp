@@ -75,7 +75,7 @@ TEST_CASE("reported errors agree with the spread of 40 seeds on one surface") {
     const MicrofacetModel model(ndf, FresnelTerm::conductor({{0.21, 3.272}}),
                                 MaskingForm::height_correlated);
     const Vec3 wi = spherical_direction(radians(50.0), 0.3);
-    ModelMap m;
+    ModelIncidence m;
     m.energy = model_cell_energy(model, wi, sensor, CellQuadrature{});
     m.relative_tolerance = 1e-6;
     const int seeds = 40;
@@ -92,7 +92,7 @@ TEST_CASE("reported errors agree with the spread of 40 seeds on one surface") {
             sum_orders(r.ledger_batches.reflected, r.batches, r.orders, 1, r.orders);
         l2plus.add(batch_mean(l2, r.batches)[0], batch_stderr(l2, r.batches)[0]);
         absorbed.add(r.ledger.absorbed[0], r.ledger_stderr.absorbed[0]);
-        const Comparison c = compare_model(r, false, m);
+        const Comparison c = compare_model(r, ModelTarget::l1, m);
         distance.add(c.distance[0], c.distance_stderr[0]);
         // The brightest cells of Model L1, pooled: one value per seed and cell.
         for (int cell = 0; cell < sensor.cell_count(); ++cell)
@@ -161,7 +161,7 @@ TEST_CASE("an accuracy target: met, said, reproducible, and its error is the spr
     for (int seed = 1; seed <= 12; ++seed) {
         st.seed = std::uint64_t(seed);
         const TraceResult r = trace_incidence(scene, mirror, sensor, wi, st);
-        CHECK(r.stop == "target");
+        CHECK(r.stop == StopReason::target);
         CHECK(r.achieved_error <= 2e-3);
         CHECK(r.rounds > 1); // 2048 rays alone are far from it
         CHECK(r.ledger_stderr.reflected[0] / r.ledger.reflected[0] ==
@@ -186,7 +186,7 @@ TEST_CASE("an accuracy target: met, said, reproducible, and its error is the spr
         st.seed = 1;
         st.target.max_rays = 20000;
         const TraceResult r = trace_incidence(scene, mirror, sensor, wi, st);
-        CHECK(r.stop == "max_rays");
+        CHECK(r.stop == StopReason::max_rays);
         CHECK(r.rays <= 20000);
         CHECK(r.achieved_error > 2e-3);
     }
@@ -195,7 +195,7 @@ TEST_CASE("an accuracy target: met, said, reproducible, and its error is the spr
         st.target.quantity = TargetQuantity::l1_cells;
         st.target.relative_error = 0.05;
         const TraceResult r = trace_incidence(scene, mirror, sensor, wi, st);
-        CHECK(r.stop == "target");
+        CHECK(r.stop == StopReason::target);
         double peak = 0, worst = 0;
         for (int c = 0; c < 100; ++c)
             peak = std::max(peak, r.energy[size_t(c)] / sensor.cell(c).projected_solid_angle);

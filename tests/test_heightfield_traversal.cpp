@@ -58,8 +58,8 @@ TEST_CASE("hit for hit against Embree on 10^7 pipeline segments, above and below
             for (double alpha : {0.1, 0.5, 1.0, 2.0}) {
                 const auto ndf = ndf_of(ggx, alpha);
                 const HeightField surface = surface_of(*ndf, n, std::uint64_t(7 + k));
-                Scene embree(surface, TraceBackend::embree);
-                const Scene walk(surface, TraceBackend::heightfield);
+                Scene embree(surface, embree_backend());
+                const Scene walk(surface, heightfield_backend());
                 for (double theta : {0.0, 60.0, 85.0, 89.9}) {
                     const Material& material =
                         (k++ % 2) ? static_cast<const Material&>(glass) : mirror;
@@ -98,8 +98,8 @@ TEST_CASE("watertight: rays crossing the surface at its vertices and edges hit i
     // (a ray that only touches a crease from one side may be called either way, so each segment
     // here truly crosses). Border points take vertical rays (a segment starts in the patch).
     const HeightField surface = surface_of(Beckmann(1.0), 32);
-    const Scene walk(surface, TraceBackend::heightfield);
-    const Scene embree(surface, TraceBackend::embree);
+    const Scene walk(surface, heightfield_backend());
+    const Scene embree(surface, embree_backend());
     std::mt19937_64 rng(3);
     std::uniform_real_distribution<double> u(-1, 1);
     long long crossing = 0, missed = 0, compared = 0;
@@ -147,8 +147,8 @@ TEST_CASE("Scene::trace gives the same hits, wraps and escapes with both backend
     // wrapping): the same outcome and, for hits, the same point.
     for (double alpha : {0.3, 1.5}) {
         const HeightField surface = surface_of(Beckmann(alpha), 64);
-        const Scene walk(surface, TraceBackend::heightfield);
-        const Scene embree(surface, TraceBackend::embree);
+        const Scene walk(surface, heightfield_backend());
+        const Scene embree(surface, embree_backend());
         std::mt19937_64 rng(11);
         std::uniform_real_distribution<double> u(0, 1);
         long long rays = 0, differ = 0, hits = 0;
@@ -185,8 +185,8 @@ TEST_CASE("rays leaving the surface cross the same walls with both backends") {
     // can cross two walls and the plane between them) and report the same outcome.
     for (double alpha : {0.3, 1.5}) {
         const HeightField surface = surface_of(Beckmann(alpha), 64, 3);
-        const Scene walk(surface, TraceBackend::heightfield);
-        const Scene embree(surface, TraceBackend::embree);
+        const Scene walk(surface, heightfield_backend());
+        const Scene embree(surface, embree_backend());
         const HeightfieldTraversal heights(surface);
         std::mt19937_64 rng(5);
         std::uniform_real_distribution<double> u(0, 1);
@@ -226,7 +226,7 @@ TEST_CASE("a beam's rays start where their block is clear, and meet the same fac
             const bool ggx = k >= 3;
             const double alpha = std::array<double, 5>{0.1, 0.75, 2.0, 0.3, 1.5}[size_t(k)];
             const HeightField surface = surface_of(*ndf_of(ggx, alpha), n, std::uint64_t(20 + k));
-            const Scene walk(surface, TraceBackend::heightfield);
+            const Scene walk(surface, heightfield_backend());
             std::mt19937_64 rng(std::uint64_t(100 * n + k));
             std::uniform_real_distribution<double> u(0, 1);
             for (double theta : {0.0, 30.0, 60.0, 75.0, 85.0, 88.0}) {
@@ -315,8 +315,8 @@ TEST_CASE("whole runs with either backend agree within their Monte Carlo error, 
     const SpecularReflector mirror(FresnelTerm::mirror());
     const DielectricFacet glass(1.5);
     const HeightField surface = surface_of(Ggx(0.8), 128);
-    const Scene embree(surface, TraceBackend::embree);
-    const Scene walk(surface, TraceBackend::heightfield);
+    const Scene embree(surface, embree_backend());
+    const Scene walk(surface, heightfield_backend());
     for (const Material* m :
          {static_cast<const Material*>(&mirror), static_cast<const Material*>(&glass)})
         for (double theta : {0.0, 60.0, 89.0}) {
@@ -355,10 +355,10 @@ TEST_CASE("whole runs with either backend agree within their Monte Carlo error, 
 
 TEST_CASE("trace.backend chooses the backend, and a bad one is refused by name") {
     const std::string base = "[ndf]\ntype = \"beckmann\"\nalpha = 0.5\n[beam]\ntheta_i = [0]\n";
-    CHECK(parse_config(base, "t.toml").cases[0].trace.backend == kDefaultTraceBackend);
+    CHECK(parse_config(base, "t.toml").cases[0].trace.backend == &default_trace_backend());
     CHECK(parse_config(base + "[trace]\nbackend = \"heightfield\"\n", "t.toml")
               .cases[0]
-              .trace.backend == TraceBackend::heightfield);
+              .trace.backend == &heightfield_backend());
     try {
         parse_config(base + "[trace]\nbackend = \"optix\"\n", "t.toml");
         FAIL("accepted");

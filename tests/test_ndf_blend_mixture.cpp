@@ -1,6 +1,8 @@
 // The anisotropic blend [R19 Eq. 10] and mixtures: their reductions to a single distribution, the
 // azimuth inversion of R19 Eq. 16, and the errors for inputs outside their definitions. (Both are
 // also in the NDF battery of test_ndf_families.cpp.)
+#include "core/config_error.h"
+#include "gonio/config/config.h"
 #include "heightfield/ndf/anisotropic_blend.h"
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/ggx.h"
@@ -82,9 +84,11 @@ TEST_CASE("blends and mixtures reject what they cannot represent") {
     CHECK_THROWS_WITH_AS(
         AnisotropicBlend(std::make_unique<Ggx>(0.2, 0.5), std::make_unique<Beckmann>(0.3)),
         doctest::Contains("must be isotropic"), std::invalid_argument);
-    std::vector<std::unique_ptr<Ndf>> parts;
-    parts.push_back(std::make_unique<Beckmann>(0.3));
-    CHECK_THROWS_WITH_AS(MixtureNdf(std::move(parts), {0.0}), doctest::Contains("positive"),
-                         std::invalid_argument);
-    CHECK_THROWS_AS(MixtureNdf({}, {}), std::invalid_argument);
+    // A mixture's weights and components are user input: checked where the config is read.
+    const std::string head = "[beam]\ntheta_i = 0\n[ndf]\ntype = \"mixture\"\n"
+                             "components = [{ type = \"beckmann\", alpha = 0.3 }]\n";
+    CHECK_THROWS_WITH_AS(parse_config(head + "weights = [0.0]\n", "m.toml"),
+                         doctest::Contains("ndf.weights"), ConfigError);
+    CHECK_THROWS_WITH_AS(parse_config(head + "weights = [0.5, 0.5]\n", "m.toml"),
+                         doctest::Contains("ndf.weights"), ConfigError);
 }

@@ -5,6 +5,7 @@
 #include "heightfield/exr_io.h"
 #include "heightfield/generate.h"
 #include "heightfield/ndf/beckmann.h"
+#include "heightfield/surface_generator.h"
 #include "sensor/beckers_sensor.h"
 #include "sensor/cell_integral.h"
 
@@ -45,7 +46,8 @@ TEST_CASE("C19: one Beckmann lobe everywhere gives Beckmann's D, Lambda and BRDF
     }
 }
 
-TEST_CASE("C19: the fitted mixture keeps the map's slope moments, and its P-NDF integrates to A_P") {
+TEST_CASE(
+    "C19: the fitted mixture keeps the map's slope moments, and its P-NDF integrates to A_P") {
     const HeightField s = brushed_surface(16);
     const std::vector<SlopeLobe> lobes = fit_slope_lobes(s);
     REQUIRE(lobes.size() == 256);
@@ -109,7 +111,7 @@ TEST_CASE(
     // lobe's variance is a sample variance over a few texels -- TV 0.08 against 0.016 here).
     SurfaceSpec spec;
     spec.size = 64;
-    spec.generator = Generator::heitz;
+    spec.generator = &heitz_generator();
     spec.correlation_length = 8;
     const HeightField s = generate_surface(Beckmann(0.1, 0.4), spec, 2);
     const PBrdfModel p(fit_slope_lobes(s), FresnelTerm::mirror());

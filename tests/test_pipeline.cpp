@@ -1,9 +1,9 @@
-// The pipeline as a library call (gonio/pipeline/simulate_case.h), its phase timings, and the
-// command that lists the declared keys.
+// A run as a library call (gonio/run/run.h), its phase timings, and the command that lists the
+// declared keys.
 #include "cli_harness.h"
 #include "gonio/config/config.h"
 #include "gonio/io/hdf5_handles.h"
-#include "gonio/pipeline/simulate_case.h"
+#include "gonio/run/run.h"
 
 #include <doctest/doctest.h>
 
@@ -28,19 +28,19 @@ batches = 4
 )";
 } // namespace
 
-TEST_CASE("simulate_case: one call builds the case, traces its sweep and returns typed results") {
+TEST_CASE("run_local: one call builds the case, traces its sweep and returns typed results") {
     const Config cfg = parse_config(kSmall, "small.toml");
-    CaseRunSettings settings;
-    settings.seed = cfg.seed;
     int started = 0, finished = 0;
-    CaseObserver observer;
-    observer.started = [&](const std::string&) { ++started; };
-    observer.finished = [&](const IncidenceReport& r) {
+    RunOptions options;
+    options.observer.started = [&](const std::string&) { ++started; };
+    options.observer.incidence = [&](const IncidenceReport& r) {
         ++finished;
         CHECK(r.trace != nullptr);
         CHECK(r.simulation->incidences() == size_t(finished));
     };
-    const CaseResult r = simulate_case(cfg.cases[0], settings, observer);
+    const RunResult run = run_local(cfg, options);
+    REQUIRE(run.cases.size() == 1);
+    const CaseResult& r = run.cases[0];
     CHECK(started == 2);
     CHECK(finished == 2);
     CHECK(r.simulation.complete());
@@ -61,9 +61,9 @@ TEST_CASE("simulate_case: one call builds the case, traces its sweep and returns
     CHECK(names == std::vector<std::string>{"ndf", "surface", "scene", "models_setup", "trace",
                                             "model_l1", "compare"});
     // The models alone: no surface for Model L1, the same model albedos as with the trace.
-    const CaseResult m = evaluate_case_models(cfg.cases[0], settings);
-    CHECK(m.simulation.incidences() == 0);
-    CHECK(m.models[0].albedo.data == r.models[0].albedo.data);
+    const RunResult m = run_models(cfg, {});
+    CHECK(m.cases[0].simulation.incidences() == 0);
+    CHECK(m.cases[0].models[0].albedo.data == r.models[0].albedo.data);
 }
 
 TEST_CASE("gonio run stores every phase's time, and the phases add up to the wall time") {

@@ -2,7 +2,7 @@
 // as 1/sqrt(spp), thread-count independence, the image files, and the command's bad arguments.
 #include "core/chi_square.h"
 #include "core/random.h"
-#include "gonio/cli/cli_common.h"
+#include "core/threads.h"
 #include "gonio/render/colour_difference.h"
 #include "gonio/render/renderer.h"
 #include "tests/cli_harness.h"
@@ -71,7 +71,7 @@ double mean_square_difference(const Image& a, const Image& b,
 } // namespace
 
 TEST_CASE("render: a white furnace (albedo-1 BSDFs under a uniform environment) renders 1") {
-    const RenderScene scene("torus"); // concave: it sees itself
+    const RenderScene scene(RenderObject::torus); // concave: it sees itself
     const Environment env = Environment::uniform(1.0);
     const TableBsdf object(glossy_table(1.0));
     const LambertianBsdf floor({1, 1, 1});
@@ -87,7 +87,7 @@ TEST_CASE("render: a white furnace (albedo-1 BSDFs under a uniform environment) 
 }
 
 TEST_CASE("render: a Lambertian table renders like the analytic Lambertian object") {
-    const RenderScene scene("sphere");
+    const RenderScene scene(RenderObject::sphere);
     const Environment env = Environment::overcast_sky();
     const TableBsdf table(glossy_table(0.7, true));
     const LambertianBsdf analytic({0.7, 0.7, 0.7}), floor({0.5, 0.5, 0.5});
@@ -114,7 +114,7 @@ TEST_CASE("render: a Lambertian table renders like the analytic Lambertian objec
 }
 
 TEST_CASE("render: the error falls as 1 / sqrt(spp)") {
-    const RenderScene scene("torus");
+    const RenderScene scene(RenderObject::torus);
     const Environment env = Environment::overcast_sky();
     const TableBsdf object(glossy_table(0.8));
     const LambertianBsdf floor({0.5, 0.5, 0.5});
@@ -140,7 +140,7 @@ TEST_CASE("render: the error falls as 1 / sqrt(spp)") {
 }
 
 TEST_CASE("render: the same image for 1 and 2 threads") {
-    const RenderScene scene("sphere");
+    const RenderScene scene(RenderObject::sphere);
     const Environment env = Environment::overcast_sky();
     const TableBsdf object(glossy_table(0.8));
     const LambertianBsdf floor({0.5, 0.5, 0.5});

@@ -2,7 +2,7 @@
 // surface seeds, the spread of the ensemble means is what the reported errors say.
 #include "core/special_functions.h"
 #include "gonio/config/config.h"
-#include "gonio/pipeline/simulate_case.h"
+#include "gonio/run/run.h"
 
 #include <algorithm>
 #include <cmath>
@@ -69,11 +69,9 @@ EnsembleSpread spread_of(int ensembles, const std::string& extra) {
     std::vector<std::vector<double>> cells, cell_errors;
     for (int k = 0; k < ensembles; ++k) {
         const Config cfg = parse_config(ensemble_config(k, extra), "ensemble.toml");
-        CaseRunSettings s;
-        s.seed = cfg.seed;
-        const CaseResult r = simulate_case(cfg.cases[0], s);
-        const SimulationResult& sim = r.simulation;
-        REQUIRE(sim.error_scope == "rays+surface");
+        const RunResult run = run_local(cfg, {});
+        const SimulationResult& sim = run.cases[0].simulation;
+        REQUIRE(sim.error_scope == ErrorScope::rays_and_surface);
         out.l1.value.push_back(sim.reflected.first_albedo.mean.at({0, 0, 0}));
         out.l1.reported.push_back(sim.reflected.first_albedo.error.at({0, 0, 0}));
         out.linf.value.push_back(sim.reflected.all_albedo.mean.at({0, 0, 0}));
@@ -147,13 +145,13 @@ TEST_CASE("an ensemble gives the same numbers with 1 and 2 threads, with and wit
           "realisations = 3\nmax_realisations = 12\n[trace]\nrays = 4096\nbatches = 4\n"
           "target_error = 0.003\n"}) {
         const Config cfg = parse_config(ensemble_config(0, extra), "ensemble.toml");
-        CaseRunSettings s;
-        s.seed = cfg.seed;
         std::vector<std::vector<double>> runs;
         for (int threads : {1, 2}) {
             tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-            s.threads = threads;
-            const CaseResult r = simulate_case(cfg.cases[0], s);
+            RunOptions o;
+            o.threads = threads;
+            const RunResult run = run_local(cfg, o);
+            const CaseResult& r = run.cases[0];
             std::vector<double> all = r.simulation.reflected.distribution.mean.data;
             for (const Array* a : {&r.simulation.reflected.distribution.error,
                                    &r.simulation.reflected.all_albedo.error,

@@ -1,14 +1,25 @@
-#include "gonio/cli/commands.h"
+#include "core/enum_names.h"
+#include "gonio/cli/command.h"
 #include "heightfield/surface_cache.h"
 
 #include <cstdio>
 
 namespace gonio {
 
-int run_cache_command(const std::string& action, const std::string& directory) {
-    const SurfaceCache cache(directory.empty() ? default_cache_directory() : directory);
+namespace {
+enum class CacheAction { list, clear };
+} // namespace
+template <>
+struct EnumNames<CacheAction> {
+    static constexpr const char* what = "cache action";
+    static constexpr const char* names[] = {"list", "clear"};
+};
+
+namespace {
+int cache_command_run(CacheAction action, const std::string& directory) {
     const std::string dir = directory.empty() ? default_cache_directory() : directory;
-    if (action == "clear") {
+    const SurfaceCache cache(dir);
+    if (action == CacheAction::clear) {
         const int n = cache.clear();
         std::printf("%s: removed %d file%s\n", dir.c_str(), n, n == 1 ? "" : "s");
         return 0;
@@ -28,4 +39,21 @@ int run_cache_command(const std::string& action, const std::string& directory) {
     return 0;
 }
 
+std::function<int()> setup(CLI::App& app, const CliContext&) {
+    auto action = std::make_shared<std::string>();
+    auto dir = std::make_shared<std::string>();
+    app.add_option("action", *action, "list or clear")
+        ->required()
+        ->check(CLI::IsMember(enum_names<CacheAction>()));
+    app.add_option("--cache-dir", *dir, "Surface cache directory");
+    return [action, dir] { return cache_command_run(enum_named<CacheAction>(*action), *dir); };
+}
+} // namespace
+
+const Command& cache_command() {
+    static const Command c{
+        "cache", "List or clear the surface cache ($GONIO_CACHE_DIR; $GONIO_CACHE_MAX caps it)",
+        setup};
+    return c;
+}
 } // namespace gonio

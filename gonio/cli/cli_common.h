@@ -1,52 +1,51 @@
 #pragma once
-// Settings every subcommand derives from its options the same way.
-#include "gonio/config/config.h"
-#include "gonio/io/result_writer.h"
-#include "gonio/pipeline/phase_times.h"
+// What the subcommands share: their registration (command.h), the options most of them take
+// (declared once here), and the errors that end a command with a usage exit code.
+#include "core/threads.h"
 #include "heightfield/surface_cache.h"
 
-#include <memory>
+#include <CLI/CLI.hpp>
+#include <stdexcept>
 #include <string>
-#include <tbb/global_control.h>
-#include <thread>
+#include <vector>
 
 namespace gonio {
 
-// Caps TBB at `threads` (> 0) for as long as the returned object lives; 0 leaves all cores.
-inline std::unique_ptr<tbb::global_control> limit_threads(int threads) {
-    if (threads <= 0) return nullptr;
-    return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                 threads);
-}
+// A bad argument on the command line: "gonio: error: ..." and exit code 2, like a config error.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
 
-// The worker count for FFTW: the option, or every core.
-inline int worker_threads(int threads) {
-    return threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
-}
+// The options shared by the commands; each command asks for the ones it takes.
+struct CommonOptions {
+    std::string config;                 // kConfig: the TOML config file
+    std::string output;                 // kOutput: -o (its text is the command's)
+    std::vector<std::string> overrides; // kSet: --set key=value
+    bool overwrite = false;             // kOverwrite
+    bool quiet = false;                 // kQuiet
+    int threads = 0;                    // kThreads: 0 is every core
+    bool no_cache = false;              // kCache: --no-cache and --cache-dir
+    std::string cache_dir;
+};
+enum CommonOption : unsigned {
+    kConfig = 1u << 0,
+    kSet = 1u << 1,
+    kOverwrite = 1u << 2,
+    kQuiet = 1u << 3,
+    kThreads = 1u << 4,
+    kCache = 1u << 5,    // --no-cache and --cache-dir
+    kCacheDir = 1u << 6, // --cache-dir alone
+};
+void add_common_options(CLI::App& app, CommonOptions& o, unsigned which);
 
-// --no-cache disables the surface cache; --cache-dir overrides the default directory.
-inline SurfaceCache surface_cache(bool no_cache, const std::string& cache_dir) {
-    if (no_cache) return SurfaceCache(std::string());
-    cache_size_limit(); // a bad GONIO_CACHE_MAX fails now, not after a surface was made
-    return SurfaceCache(cache_dir.empty() ? default_cache_directory() : cache_dir);
-}
+// The surface cache the options name (--no-cache: none); a bad GONIO_CACHE_MAX fails now.
+SurfaceCache surface_cache(const CommonOptions& o);
 
-// A run's own phases: "config" is the loading of `cfg` since `start`, less its NDFs' (each case's
-// "ndf" phase).
-inline PhaseTimes run_phases(const Config& cfg, PhaseTimes::Clock::time_point start) {
-    double ndf_seconds = 0;
-    for (const CaseConfig& c : cfg.cases) ndf_seconds += c.ndf_seconds;
-    PhaseTimes run;
-    run.add("config",
-            std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count() - ndf_seconds);
-    return run;
-}
+// <stem of the config>.<extension> in the working directory, unless `output` is given.
+std::string output_or_default(const std::string& output, const std::string& config,
+                              const std::string& extension);
 
-// Adds the wall time since `start` to the run's phases, writes them at the root and commits.
-inline void finish_run(ResultWriter& writer, PhaseTimes run, PhaseTimes::Clock::time_point start) {
-    run.add("wall", std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count());
-    writer.write_timings("", run.phases());
-    writer.commit();
-}
+// Refuses (UsageError, exit 2) to replace `path` unless --overwrite.
+void refuse_existing(const std::string& path, bool overwrite);
 
 } // namespace gonio

@@ -1,5 +1,7 @@
-#include "gonio/cli/commands.h"
+#include "gonio/cli/command.h"
 #include "gonio/io/result_reader.h"
+#include "gonio/io/simulation_result.h"
+#include "gonio/model/cell_model.h"
 
 #include <cstdio>
 #include <string>
@@ -7,7 +9,8 @@
 
 namespace gonio {
 
-int run_compare_command(const std::string& path) {
+namespace {
+int compare(const std::string& path) {
     const ResultSummary s = read_result_summary(path);
     // One row per incidence, channel and model: the model's albedo against the simulated
     // quantity it models (L1 or every order), their relative difference and how many standard
@@ -45,7 +48,9 @@ int run_compare_command(const std::string& path) {
                                         "-", "-", "-");
                         } else {
                             const auto vs = c.attributes.find("model_" + m + "_compared_with");
-                            const bool all = vs != c.attributes.end() && vs->second == "linf";
+                            const bool all =
+                                vs != c.attributes.end() &&
+                                enum_named<ModelTarget>(vs->second) == ModelTarget::linf;
                             std::printf(" %-10s %4s", m.c_str(), all ? "Linf" : "L1");
                             pm("model_" + m + "_albedo", i, "%.6f");
                             pm(all ? "linf_albedo" : "l1_albedo", i, "%.6f");
@@ -65,11 +70,23 @@ int run_compare_command(const std::string& path) {
     // What the errors above include: with one surface, only the rays.
     for (const CaseSummary& c : s.cases)
         if (auto scope = c.attributes.find("error_scope");
-            scope != c.attributes.end() && scope->second == "rays")
+            scope != c.attributes.end() &&
+            enum_named<ErrorScope>(scope->second) == ErrorScope::rays)
             std::printf("%s: errors are those of the rays on one surface, conditional on it "
                         "(surface.realisations >= 2 includes the surfaces' spread)\n",
                         c.name.c_str());
     return 0;
 }
 
+std::function<int()> setup(CLI::App& app, const CliContext&) {
+    auto path = std::make_shared<std::string>();
+    app.add_option("file", *path, "HDF5 result file")->required();
+    return [path] { return compare(*path); };
+}
+} // namespace
+
+const Command& compare_command() {
+    static const Command c{"compare", "Print the Model-vs-simulated table of a result file", setup};
+    return c;
+}
 } // namespace gonio

@@ -1,4 +1,4 @@
-#include "gonio/cli/commands.h"
+#include "gonio/cli/command.h"
 #include "gonio/io/result_reader.h"
 
 #include <algorithm>
@@ -166,13 +166,23 @@ void print_text(const ResultSummary& s) {
 
 } // namespace
 
-int run_info_command(const std::string& path, bool as_json) {
-    const ResultSummary s = read_result_summary(path);
-    if (as_json)
-        print_json(s);
-    else
-        print_text(s);
-    return 0;
+namespace {
+std::function<int()> setup(CLI::App& app, const CliContext&) {
+    auto path = std::make_shared<std::string>();
+    auto json = std::make_shared<bool>(false);
+    app.add_option("file", *path, "HDF5 result file")->required();
+    app.add_flag("--json", *json, "Print a JSON object instead of text");
+    return [path, json] {
+        const ResultSummary s = read_result_summary(*path);
+        *json ? print_json(s) : print_text(s);
+        return 0;
+    };
+}
+} // namespace
+
+const Command& info_command() {
+    static const Command c{"info", "Summarise a result file", setup};
+    return c;
 }
 
 } // namespace gonio

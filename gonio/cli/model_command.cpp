@@ -1,87 +1,83 @@
+// `gonio model CONFIG`: the models of every case and incidence on the sensor cells, without a
+// trace, written to HDF5.
 #include "core/config_error.h"
 #include "gonio/cli/cli_common.h"
-#include "gonio/cli/commands.h"
+#include "gonio/cli/command.h"
 #include "gonio/cli/progress.h"
-#include "gonio/config/config.h"
-#include "gonio/distributed/stop_signal.h"
-#include "gonio/distributed/work_units.h"
+#include "gonio/cli/stop_signal.h"
 #include "gonio/io/result_writer.h"
-#include "gonio/pipeline/simulate_case.h"
+#include "gonio/run/run.h"
 
 #include <cstdio>
-#include <filesystem>
 
 namespace gonio {
 
-int run_model_command(const ModelOptions& options) {
+namespace {
+int model(const CommonOptions& a, const CliContext& context) {
     const auto start = PhaseTimes::Clock::now();
-    const Config cfg = load_config(options.config, options.overrides); // throws ConfigError
+    const Config cfg = load_config(a.config, a.overrides); // throws ConfigError
     cfg.require_beam("gonio model");
     for (size_t k = 0; k < cfg.cases.size(); ++k)
         if (cfg.cases[k].model.models.empty())
             throw ConfigError(cfg.path, -1, "case[" + std::to_string(k) + "].model.evaluate",
                               "gonio model evaluates the models; this case has none");
-    PhaseTimes run = run_phases(cfg, start);
-    auto t = PhaseTimes::Clock::now();
-    const std::string output = options.output.empty()
-                                   ? std::filesystem::path(options.config).stem().string() + ".h5"
-                                   : options.output;
-    const auto limit = limit_threads(options.threads);
+    const auto limit = limit_threads(a.threads);
+    const std::string output = output_or_default(a.output, a.config, ".h5");
+    refuse_existing(output, a.overwrite);
+    ResultWriter writer(output, true); // an unwritable output fails here, before any work
     install_stop_handlers();
-    ResultWriter writer(output, options.overwrite); // refuses to replace a file before any work
-    writer.write_run(cfg, options.command_line);
-    t = run.add_since("writing", t);
-
-    long long total = 0, done = 0;
-    for (const auto& c : cfg.cases) total += c.theta_i_deg.size() * c.phi_i_deg.size();
-    Progress progress(total, options.quiet);
-    if (!options.quiet)
+    RunOptions o;
+    o.threads = a.threads;
+    o.cache = surface_cache(a); // the P-BRDF's surface
+    o.stop_requested = [] { return stop_requested(); };
+    o.command_line = context.command_line;
+    o.started = start;
+    o.config_seconds = std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count();
+    Progress progress(UnitLayout(cfg).total(), a.quiet);
+    long long done = 0;
+    if (!a.quiet)
         std::printf("%-24s %8s %8s  %-10s %s\n", "case", "theta_i", "phi_i", "model", "albedo");
-    CaseRunSettings settings;
-    settings.seed = cfg.seed;
-    settings.threads = worker_threads(options.threads);
-    settings.cache = surface_cache(false, ""); // the P-BRDF's surface, from the default cache
-    for (size_t ci = 0; ci < cfg.cases.size(); ++ci) {
-        const CaseConfig& c = cfg.cases[ci];
-        CaseObserver observer;
-        observer.started = [&](const std::string& label) {
-            if (stop_requested()) throw Interrupted(); // between incidences: nothing half-written
-            progress.update(done, label);
-        };
-        observer.finished = [&](const IncidenceReport& r) {
-            ++done;
-            if (options.quiet) return;
-            progress.finish();
-            for (size_t m = 0; m < r.model_albedos->size(); ++m) {
-                std::printf("%-24s %8.3f %8.3f  %-10s", c.name.c_str(), r.theta_deg, r.phi_deg,
-                            c.model.models[m].name.c_str());
-                for (double a : (*r.model_albedos)[m]) std::printf(" %.6f", a);
-                std::printf("\n");
-            }
-        };
-        settings.case_index = ci;
-        CaseResult result;
-        try {
-            result = evaluate_case_models(c, settings, observer);
-        } catch (const Interrupted&) {
-            progress.finish();
-            std::fprintf(stderr, "gonio: interrupted; nothing was written (models are recomputed "
-                                 "on the next run)\n");
-            return 130;
+    o.observer.started = [&](const std::string& label) { progress.update(done, label); };
+    o.observer.incidence = [&](const IncidenceReport& r) {
+        ++done;
+        if (a.quiet) return;
+        progress.finish();
+        for (size_t m = 0; m < r.models->size(); ++m) {
+            std::printf("%-24s %8.3f %8.3f  %-10s", r.config->name.c_str(), r.theta_deg, r.phi_deg,
+                        r.config->model.models[m].name.c_str());
+            for (double v : albedo_from_cells((*r.models)[m].energy, r.config->channels()))
+                std::printf(" %.6f", v);
+            std::printf("\n");
         }
-        t = PhaseTimes::Clock::now();
-        writer.write_model_case(c, *result.sensor, c.ndf->describe(), result.models);
-        PhaseTimes phases = result.phases;
-        phases.add_since("writing", t);
-        writer.write_timings(c.name, phases.phases());
-        run.merge(phases);
-        t = PhaseTimes::Clock::now();
+    };
+    RunResult result;
+    try {
+        result = run_models(cfg, o);
+    } catch (const Interrupted&) {
+        progress.finish();
+        std::fprintf(stderr, "gonio: interrupted; nothing was written (models are recomputed "
+                             "on the next run)\n");
+        return 130;
     }
     progress.finish();
-    run.add_since("writing", t);
-    finish_run(writer, run, start);
-    if (!options.quiet) std::printf("wrote %s\n", output.c_str());
+    write_result(result, writer);
+    if (!a.quiet) std::printf("wrote %s\n", output.c_str());
     return 0;
+}
+
+std::function<int()> setup(CLI::App& app, const CliContext& context) {
+    auto a = std::make_shared<CommonOptions>();
+    add_common_options(app, *a, kConfig | kSet | kOverwrite | kQuiet | kThreads | kCacheDir);
+    app.add_option("-o,--output", a->output, "HDF5 result file (default: <config>.h5)");
+    return [a, context] { return model(*a, context); };
+}
+} // namespace
+
+const Command& model_command() {
+    static const Command c{
+        "model", "Evaluate the analytic Model L1 on the sensor cells for every case and incidence",
+        setup};
+    return c;
 }
 
 } // namespace gonio

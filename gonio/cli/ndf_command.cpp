@@ -5,7 +5,7 @@
 #include "core/config_error.h"
 #include "core/quadrature.h"
 #include "gonio/cli/cli_common.h"
-#include "gonio/cli/commands.h"
+#include "gonio/cli/command.h"
 #include "gonio/config/config.h"
 #include "gonio/model/cell_integrator.h"
 #include "gonio/model/microfacet_model.h"
@@ -43,14 +43,18 @@ double at(const Ndf& ndf, double theta_deg, double phi, bool lambda) {
     const Vec3 d = spherical_direction(radians(std::min(theta_deg, 89.999)), phi);
     return lambda ? ndf.lambda(d) : ndf.D(d);
 }
-} // namespace
+struct NdfArgs {
+    CommonOptions common;
+    std::string csv; // optional: the curves at 0.5 degree steps
+};
 
-int run_ndf_command(const NdfOptions& options) {
+int ndf_curves(const NdfArgs& args) {
+    const CommonOptions& options = args.common;
     const Config cfg = load_config(options.config, options.overrides); // throws ConfigError
     const auto limit = limit_threads(options.threads);
     std::ofstream csv;
-    const std::string tmp = options.csv + ".tmp-" + std::to_string(::getpid());
-    if (!options.csv.empty()) {
+    const std::string tmp = args.csv + ".tmp-" + std::to_string(::getpid());
+    if (!args.csv.empty()) {
         csv.open(tmp);
         if (!csv) throw std::runtime_error("cannot write " + tmp);
         csv << "case,theta_deg,D_phi0,D_phi90,lambda_phi0,lambda_phi90\n";
@@ -88,14 +92,28 @@ int run_ndf_command(const NdfOptions& options) {
             }
         std::fflush(stdout);
     }
-    if (!options.csv.empty()) {
+    if (!args.csv.empty()) {
         csv.close();
         if (!csv) throw std::runtime_error("cannot write " + tmp);
-        std::filesystem::rename(tmp, options.csv);
-        std::printf("wrote %s (plot: /usr/bin/python3 scripts/plot_ndf.py %s)\n",
-                    options.csv.c_str(), options.csv.c_str());
+        std::filesystem::rename(tmp, args.csv);
+        std::printf("wrote %s (plot: /usr/bin/python3 scripts/plot_ndf.py %s)\n", args.csv.c_str(),
+                    args.csv.c_str());
     }
     return 0;
 }
 
+std::function<int()> setup(CLI::App& app, const CliContext&) {
+    auto a = std::make_shared<NdfArgs>();
+    add_common_options(app, a->common, kConfig | kSet | kThreads);
+    app.add_option("--csv", a->csv, "Write the curves (0.5 deg steps) to this CSV file");
+    return [a] { return ndf_curves(*a); };
+}
+} // namespace
+
+const Command& ndf_command() {
+    static const Command c{
+        "ndf", "Print each case's D and Lambda along phi = 0 and 90 deg and its Model L1 albedo",
+        setup};
+    return c;
+}
 } // namespace gonio

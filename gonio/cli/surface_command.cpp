@@ -1,5 +1,5 @@
 #include "gonio/cli/cli_common.h"
-#include "gonio/cli/commands.h"
+#include "gonio/cli/command.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
 #include "heightfield/surface_metrics.h"
@@ -19,7 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // Output path of a case's height map: -o as given for a single case, else with the case name.
-std::string output_for(const SurfaceOptions& o, const Config& cfg, const CaseConfig& c) {
+std::string output_for(const CommonOptions& o, const Config& cfg, const CaseConfig& c) {
     if (!o.output.empty() && cfg.cases.size() == 1) return o.output;
     if (!o.output.empty()) {
         const fs::path p(o.output);
@@ -75,9 +75,7 @@ void write_ndf_comparison(const std::string& exr, const std::string& csv, const 
     if (!out) throw std::runtime_error(csv + ": cannot write");
 }
 
-} // namespace
-
-int run_surface_command(const SurfaceOptions& o) {
+int surface(const CommonOptions& o) {
     const Config cfg = load_config(o.config, o.overrides); // throws ConfigError
     const auto limit = limit_threads(o.threads);
     const int threads = worker_threads(o.threads);
@@ -86,10 +84,9 @@ int run_surface_command(const SurfaceOptions& o) {
         const std::string out = output_for(o, cfg, c);
         for (const std::string& f : {out, sibling(out, "_ndf.exr"), sibling(out, "_ndf.csv"),
                                      sibling(out, "_normals.exr")})
-            if (!o.overwrite && fs::exists(f))
-                throw std::runtime_error(f + ": exists; pass --overwrite to replace it");
+            refuse_existing(f, o.overwrite);
     }
-    const SurfaceCache cache = surface_cache(o.no_cache, o.cache_dir);
+    const SurfaceCache cache = surface_cache(o);
     for (const CaseConfig& c : cfg.cases) {
         const Ndf* ndf = c.ndf.get();
         Progress progress(c.surface.iterations, o.quiet);
@@ -137,11 +134,11 @@ int run_surface_command(const SurfaceOptions& o) {
             std::printf("  loaded %s (edges %s)\n", c.surface.input.c_str(), origin.edges.c_str());
         else if (origin.from_cache)
             std::printf("  reused cached surface %s (generated with %s, %d iterations)\n",
-                        origin.cache_path.c_str(), name_of(c.surface.generator),
+                        origin.cache_path.c_str(), generator_name(c.surface),
                         origin.log.iterations);
         else
             std::printf("  generated with %s in %.2f s (FFTs alone %.2f s), %d iterations%s%s\n",
-                        name_of(c.surface.generator), origin.log.seconds, origin.log.fft_seconds,
+                        generator_name(c.surface), origin.log.seconds, origin.log.fft_seconds,
                         origin.log.iterations,
                         origin.log.converged_early ? " (stopped: converged)" : "",
                         cache.enabled() ? ("; cached as " + origin.cache_path).c_str() : "");
@@ -167,4 +164,20 @@ int run_surface_command(const SurfaceOptions& o) {
     return 0;
 }
 
+std::function<int()> setup(CLI::App& app, const CliContext&) {
+    auto o = std::make_shared<CommonOptions>();
+    add_common_options(app, *o, kConfig | kSet | kOverwrite | kQuiet | kThreads | kCache);
+    app.add_option("-o,--output", o->output,
+                   "EXR height map (default: <config>_<case>.exr; with several cases the case "
+                   "name is appended)");
+    return [o] { return surface(*o); };
+}
+} // namespace
+
+const Command& surface_command() {
+    static const Command c{
+        "surface", "Generate (or reuse from the cache) the microsurface of every case; write EXR",
+        setup};
+    return c;
+}
 } // namespace gonio

@@ -203,7 +203,8 @@ class Loader {
         c.sensor_cells = static_cast<int>(sensor.integer(kCells));
         TableReader trace = reader(t, path, "trace");
         c.trace = read_trace(trace);
-        c.model = read_models(reader(t, path, "model"), c.material, c.ndf, c.trace.rays);
+        c.model = read_models(reader(t, path, "model"), c.material, c.ndf, c.trace.rays,
+                              c.trace.max_bounces);
         TableReader surface = reader(t, path, "surface");
         c.surface = read_surface(surface, seed_, *c.ndf, c.trace.target.active());
         return c;

@@ -46,8 +46,8 @@ double average_albedo(std::vector<std::pair<double, double>> mu_e) {
 }
 } // namespace
 
-void write_albedo(const ResultCase& first, const ExportOptions& o, std::ostream& out,
-                  ExportReport& report) {
+static void write_albedo(const ResultCase& first, const ExportOptions& o, std::ostream& out,
+                         ExportReport& report) {
     std::vector<ResultCase> cases;
     std::vector<std::string> sweep_values;
     if (o.sweep.empty()) {
@@ -130,6 +130,13 @@ void write_albedo(const ResultCase& first, const ExportOptions& o, std::ostream&
     for (const std::string& r : rows) out << r << "\n";
     report.notes.push_back(std::to_string(rows.size()) + " rows from " +
                            std::to_string(cases.size()) + " case(s)");
+}
+
+const ExportFormat& albedo_format() {
+    static const ExportFormat f{"albedo", "directional albedo per order, E(theta_i), as CSV",
+                                false,    false,
+                                true,     write_albedo};
+    return f;
 }
 
 } // namespace gonio

@@ -12,8 +12,8 @@
 
 namespace gonio {
 
-void write_astm(const ResultCase& c, const ExportOptions& o, std::ostream& out,
-                ExportReport& report) {
+static void write_astm(const ResultCase& c, const ExportOptions& o, std::ostream& out,
+                       ExportReport& report) {
     const TableOrder order = requested_order(o, true);
     if (!c.simulated)
         throw ExportRefused(c.file + ": case " + c.name +
@@ -54,6 +54,13 @@ void write_astm(const ResultCase& c, const ExportOptions& o, std::ostream& out,
     report.notes.push_back(std::to_string(nt * np * size_t(d.cells)) + " rows (" +
                            std::to_string(nt * np) + " incidences x " + std::to_string(d.cells) +
                            " cells)");
+}
+
+const ExportFormat& astm_format() {
+    static const ExportFormat f{"astm", "ASTM E1392 text, one row per incidence and cell centre",
+                                false,  false,
+                                false,  write_astm};
+    return f;
 }
 
 } // namespace gonio

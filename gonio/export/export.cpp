@@ -8,22 +8,27 @@
 
 namespace gonio {
 
-const std::vector<std::string>& export_formats() {
-    static const std::vector<std::string> formats{"rgl", "merl", "astm", "albedo"};
+const std::vector<const ExportFormat*>& export_formats() {
+    static const std::vector<const ExportFormat*> formats{&rgl_format(), &merl_format(),
+                                                          &astm_format(), &albedo_format()};
     return formats;
 }
 
-TableOrder requested_order(const ExportOptions& o, bool transmission_allowed) {
-    TableOrder order;
-    try {
-        order = table_order_named(o.orders);
-    } catch (const std::invalid_argument& e) {
-        throw ExportRefused(std::string("--orders: ") + e.what());
+const ExportFormat& export_format_named(const std::string& name) {
+    std::string names;
+    for (const ExportFormat* f : export_formats()) {
+        if (name == f->name) return *f;
+        names += (names.empty() ? "" : ", ") + std::string(f->name);
     }
-    if (order == TableOrder::transmission && !transmission_allowed)
-        throw ExportRefused(o.format + " holds reflection only: --orders t (transmission) cannot "
-                                       "be written to it");
-    return order;
+    throw std::invalid_argument("unknown format '" + name + "' (" + names + ")");
+}
+
+TableOrder requested_order(const ExportOptions& o, bool transmission_allowed) {
+    if (o.orders == TableOrder::transmission && !transmission_allowed)
+        throw ExportRefused(std::string(o.format->name) +
+                            " holds reflection only: --orders t (transmission) cannot be "
+                            "written to it");
+    return o.orders;
 }
 
 void require_hemisphere_sweep(const BsdfTable& t, const std::string& format) {
@@ -61,13 +66,14 @@ BsdfTable load_table(const ResultCase& c, TableOrder order, const std::string& f
 
 ExportReport export_result(const ExportOptions& o) {
     const auto start = std::chrono::steady_clock::now();
-    bool known = false;
-    for (const std::string& f : export_formats()) known = known || f == o.format;
-    if (!known) throw ExportRefused("unknown format '" + o.format + "' (rgl, merl, astm, albedo)");
+    if (!o.format) throw ExportRefused("no format (--format)");
+    const ExportFormat& format = *o.format;
     if (o.output.empty()) throw ExportRefused("no output file (-o)");
-    if (o.rgb && o.format != "rgl") throw ExportRefused("--rgb applies to the rgl format only");
-    if (!o.sweep.empty() && o.format != "albedo")
-        throw ExportRefused("--sweep applies to the albedo format only");
+    if (o.rgb && !format.rgb_option)
+        throw ExportRefused("--rgb does not apply to the " + std::string(format.name) + " format");
+    if (!o.sweep.empty() && !format.sweep_option)
+        throw ExportRefused("--sweep does not apply to the " + std::string(format.name) +
+                            " format");
     // With --sweep the albedo table reads every case; the first one stands for the file here.
     const ResultCase c = read_result_case(
         o.input, o.sweep.empty() ? o.case_name : [&] {
@@ -75,15 +81,8 @@ ExportReport export_result(const ExportOptions& o) {
         }());
     ExportReport report;
     report.output = o.output;
-    AtomicOutput out(o.output, o.overwrite, o.format == "rgl" || o.format == "merl");
-    if (o.format == "rgl")
-        write_rgl(c, o, out.stream(), report);
-    else if (o.format == "merl")
-        write_merl(c, o, out.stream(), report);
-    else if (o.format == "astm")
-        write_astm(c, o, out.stream(), report);
-    else
-        write_albedo(c, o, out.stream(), report);
+    AtomicOutput out(o.output, o.overwrite, format.binary);
+    format.write(c, o, out.stream(), report);
     report.bytes = out.commit();
     report.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

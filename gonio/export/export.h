@@ -7,6 +7,9 @@
 //   albedo - directional albedo per order, E(theta_i), as CSV (multiple-scattering compensation)
 // Every export writes to a temporary name renamed when complete, and refuses what its format
 // cannot hold with ExportRefused and a one-line reason.
+#include "gonio/table/bsdf_table.h"
+
+#include <ostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -17,14 +20,17 @@ struct ExportRefused : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+struct ExportFormat;
+struct ResultCase;
+
 struct ExportOptions {
-    std::string input;  // the result file
-    std::string format; // rgl | merl | astm | albedo
+    std::string input; // the result file
+    const ExportFormat* format = nullptr;
     std::string output;
-    std::string case_name;       // empty: the file's only case
-    std::string orders = "linf"; // l1 | l2plus | linf (rgl, merl, astm)
-    bool rgb = false;            // rgl: an `rgb` field instead of `spectra`
-    std::string sweep;           // albedo: a config key that varies across the file's cases
+    std::string case_name;                // empty: the file's only case
+    TableOrder orders = TableOrder::linf; // the order written (rgl, merl, astm)
+    bool rgb = false;                     // rgl: an `rgb` field instead of `spectra`
+    std::string sweep; // albedo: a config key that varies across the file's cases
     bool overwrite = false;
     bool quiet = false;
 };
@@ -36,7 +42,28 @@ struct ExportReport {
     std::vector<std::string> notes; // what the export did that a user should know
 };
 
-const std::vector<std::string>& export_formats();
+// An export format, declared in its own file (rgl_export.cpp, ...) and listed once in
+// export_formats(): the command line's choices and help come from these.
+struct ExportFormat {
+    const char* name;
+    const char* summary;
+    bool binary;       // written in binary mode
+    bool rgb_option;   // takes --rgb
+    bool sweep_option; // takes --sweep
+    // Writes the case to `out` and adds what the user should know to `report.notes`; throws
+    // ExportRefused with the one-line reason when the case cannot be represented.
+    void (*write)(const ResultCase& c, const ExportOptions& o, std::ostream& out,
+                  ExportReport& report);
+};
+
+const std::vector<const ExportFormat*>& export_formats();
+// Throws std::invalid_argument naming the formats.
+const ExportFormat& export_format_named(const std::string& name);
+const ExportFormat& rgl_format();
+const ExportFormat& merl_format();
+const ExportFormat& astm_format();
+const ExportFormat& albedo_format();
+
 // Throws ExportRefused (what the format cannot hold) or std::runtime_error (unreadable input).
 ExportReport export_result(const ExportOptions& options);
 

@@ -1,6 +1,6 @@
 #pragma once
-// The formats of `gonio export` (export.h), one file each, and what they share: which order a
-// request means and the sweep that the whole-hemisphere formats (RGL, MERL) need.
+// What the formats of `gonio export` (export.h, one file each) share: which order a request means
+// and the sweep that the whole-hemisphere formats (RGL, MERL) need.
 #include "gonio/export/export.h"
 #include "gonio/table/bsdf_table.h"
 #include "gonio/table/result_case.h"
@@ -9,19 +9,7 @@
 
 namespace gonio {
 
-// Each writes the format to `out` and adds what the user should know to `report.notes`; throws
-// ExportRefused with the one-line reason when the case cannot be represented.
-void write_rgl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
-               ExportReport& report);
-void write_merl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
-                ExportReport& report);
-void write_astm(const ResultCase& c, const ExportOptions& o, std::ostream& out,
-                ExportReport& report);
-// Every case of the file with --sweep, else `c` only.
-void write_albedo(const ResultCase& c, const ExportOptions& o, std::ostream& out,
-                  ExportReport& report);
-
-// The reflected order of --orders (l1, l2plus, linf); `t` is refused by formats of reflection.
+// The order of --orders; `t` is refused by formats of reflection.
 TableOrder requested_order(const ExportOptions& o, bool transmission_allowed);
 // Refuses sweeps a whole-hemisphere format cannot be filled from: theta_i must start within 1
 // degree of the normal, reach 80 degrees, and have no gap wider than 10 degrees.

@@ -36,8 +36,8 @@ void put_le(std::ostream& out, const void* p, size_t n) {
 }
 } // namespace
 
-void write_merl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
-                ExportReport& report) {
+static void write_merl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
+                       ExportReport& report) {
     const TableOrder order = requested_order(o, false);
     const BsdfTable table = load_table(c, order, "merl");
     if (!table.isotropic())
@@ -99,6 +99,12 @@ void write_merl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
     if (C > 1) report.notes.push_back("spectral channels converted to linear sRGB (CIE 1931, D65)");
     if (clipped)
         report.notes.push_back(std::to_string(clipped) + " out-of-gamut values clipped to 0");
+}
+
+const ExportFormat& merl_format() {
+    static const ExportFormat f{
+        "merl", "MERL .binary (isotropic reflection, sRGB)", true, false, false, write_merl};
+    return f;
 }
 
 } // namespace gonio

@@ -97,8 +97,8 @@ std::vector<double> luminance_weights(const ResultCase& c, bool rgb) {
 }
 } // namespace
 
-void write_rgl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
-               ExportReport& report) {
+static void write_rgl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
+                      ExportReport& report) {
     const TableOrder order = requested_order(o, false);
     const BsdfTable table = load_table(c, order, "rgl");
     require_hemisphere_sweep(table, "rgl");
@@ -283,6 +283,12 @@ void write_rgl(const ResultCase& c, const ExportOptions& o, std::ostream& out,
         w.add_f32("spectra", {np, nt, std::uint64_t(out_channels), kSampleRes, kSampleRes}, values);
     }
     w.write(out);
+}
+
+const ExportFormat& rgl_format() {
+    static const ExportFormat f{
+        "rgl", "RGL tensor file (Mitsuba 3 / pbrt-v4 `measured`)", true, true, false, write_rgl};
+    return f;
 }
 
 } // namespace gonio

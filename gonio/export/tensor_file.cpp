@@ -1,5 +1,7 @@
 #include "gonio/export/tensor_file.h"
 
+#include "core/check.h"
+
 #include <cstring>
 #include <stdexcept>
 
@@ -30,15 +32,13 @@ std::uint64_t count(const std::vector<std::uint64_t>& shape) {
 
 void TensorFileWriter::add_u8(const std::string& name, std::vector<std::uint64_t> shape,
                               std::vector<std::uint8_t> data) {
-    if (data.size() != count(shape))
-        throw std::logic_error("TensorFileWriter: " + name + " has the wrong number of values");
+    GONIO_CHECK_MSG(data.size() == count(shape), name + " has the wrong number of values");
     fields_.push_back({name, std::move(shape), kUInt8, std::move(data)});
 }
 
 void TensorFileWriter::add_f32(const std::string& name, std::vector<std::uint64_t> shape,
                                const std::vector<double>& data) {
-    if (data.size() != count(shape))
-        throw std::logic_error("TensorFileWriter: " + name + " has the wrong number of values");
+    GONIO_CHECK_MSG(data.size() == count(shape), name + " has the wrong number of values");
     Field f{name, std::move(shape), kFloat32, {}};
     f.bytes.reserve(data.size() * 4);
     for (double v : data) put(f.bytes, static_cast<float>(v));

@@ -1,5 +1,6 @@
 #include "gonio/io/result_writer.h"
 
+#include "core/check.h"
 #include "gonio_version.h"
 
 #include <cstdio>
@@ -111,16 +112,14 @@ struct ResultWriter::CaseGroup {
             chunk.push_back(a.dims[k] == "theta_i" || a.dims[k] == "phi_i" ? 1 : a.shape[k]);
         }
         const std::vector<double>& v = data ? *data : a.data;
-        if (v.size() != a.count(0))
-            throw std::logic_error("ResultWriter: " + name + " has " + std::to_string(v.size()) +
-                                   " values for its shape");
+        GONIO_CHECK_MSG(v.size() == a.count(0),
+                        name + " has " + std::to_string(v.size()) + " values for its shape");
         h5::Handle d = h5::write_dataset(group, name, dims, chunk, v.data(), a.units,
                                          long_name.empty() ? a.long_name : long_name);
         std::string coordinates;
         for (size_t k = 0; k < a.rank(); ++k) {
             const auto scale = scales.find(a.dims[k]);
-            if (scale == scales.end())
-                throw std::logic_error("ResultWriter: no scale for dimension " + a.dims[k]);
+            GONIO_CHECK_MSG(scale != scales.end(), "no scale for dimension " + a.dims[k]);
             h5::check(H5DSattach_scale(d, scale->second, unsigned(k)),
                       ("attach " + a.dims[k] + " to " + name).c_str());
             const std::string& c = a.dims[k] == "cell"      ? cell_coordinates
@@ -155,7 +154,7 @@ ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const Becke
     h5::write_string_attribute(group, "fresnel", c.material.description);
     h5::write_string_attribute(group, "material_source", c.material.source);
     h5::write_string_attribute(group, "masking", masking_name(c.model.masking));
-    h5::write_string_attribute(group, "trace_backend", backend_name(c.trace.backend));
+    h5::write_string_attribute(group, "trace_backend", c.trace.backend->name);
     h5::write_int_attribute(group, "quadrature_points", c.model.quadrature.points);
     h5::write_double_attribute(group, "quadrature_tolerance", c.model.quadrature.rel_tol);
     h5::write_int_attribute(group, "sensor_cells", sensor.cell_count());
@@ -225,7 +224,7 @@ void ResultWriter::write_models(CaseGroup& g, const std::vector<ModelResult>& mo
             g.put(m + "_albedo_stderr", r.albedo_stderr, nullptr,
                   "standard error of " + m + "_albedo (batch means)");
         }
-        h5::write_string_attribute(g.group, m + "_compared_with", r.compared_with);
+        h5::write_string_attribute(g.group, m + "_compared_with", name_of(r.compared_with));
         g.put(m + "_seconds", r.seconds);
         if (!r.l1.empty()) { // the V-cavity's orders
             g.put(m + "_l1", r.l1);
@@ -248,8 +247,7 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
                                          const std::string& ndf_description,
                                          const SimulationResult& sim,
                                          const std::vector<ModelResult>& models) {
-    if (!sim.complete())
-        throw std::logic_error("ResultWriter: the simulation of " + c.name + " is incomplete");
+    GONIO_CHECK_MSG(sim.complete(), "the simulation of " + c.name + " is incomplete");
     CaseGroup g = open_case(c, sensor, ndf_description);
     h5::write_string_attribute(g.group, "surface", sim.surface);
     h5::write_int_attribute(g.group, "rays_per_incidence", c.trace.rays);
@@ -291,8 +289,8 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
     g.put("trace_seconds", sim.seconds);
     g.put("rounds", sim.rounds);
     g.put("realisations", sim.realisations);
-    h5::write_string_attribute(g.group, "error_scope", sim.error_scope);
-    if (sim.error_scope == "rays+surface") {
+    h5::write_string_attribute(g.group, "error_scope", name_of(sim.error_scope));
+    if (sim.error_scope == ErrorScope::rays_and_surface) {
         g.put("surface_share_l1_albedo", sim.share_l1_albedo);
         g.put("surface_share_l2plus_albedo", sim.share_l2plus_albedo);
         g.put("surface_share_linf_albedo", sim.share_linf_albedo);
@@ -301,7 +299,9 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
     }
     g.put("achieved_error", sim.achieved_error);
     h5::write_int_attribute(g.group, "batches", c.trace.batches);
-    h5::write_string_list_attribute(g.group, "stop", sim.stop);
+    std::vector<std::string> stops;
+    for (StopReason r : sim.stop) stops.push_back(name_of(r));
+    h5::write_string_list_attribute(g.group, "stop", stops);
     if (c.trace.target.active()) {
         h5::write_string_attribute(g.group, "target_quantity", name_of(c.trace.target.quantity));
         h5::write_double_attribute(g.group, "target_relative_error", c.trace.target.relative_error);
@@ -314,7 +314,7 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
     for (size_t mi = 0; mi < models.size(); ++mi) {
         const ModelResult& model = models[mi];
         const ComparisonArrays& cmp = sim.comparisons.at(mi);
-        const std::string what = model.compared_with == "linf" ? "every order" : "L1";
+        const std::string what = model.compared_with == ModelTarget::linf ? "every order" : "L1";
         const std::string n = model.name;
         g.put(n + "_relative_difference", cmp.relative_difference,
               "(simulated " + what + " albedo - model_" + n + " albedo) / model_" + n + " albedo");

@@ -1,8 +1,7 @@
 #include "gonio/io/simulation_result.h"
 
 #include "core/batch_means.h"
-
-#include <stdexcept>
+#include "core/check.h"
 
 namespace gonio {
 
@@ -34,12 +33,13 @@ SimulationResult::SimulationResult(std::vector<double> theta_i_deg, std::vector<
         projected_solid_angle_.push_back(sensor.cell(k).projected_solid_angle);
 }
 
-void SimulationResult::allocate(const TraceResult& r, size_t models) {
+void SimulationResult::allocate(const TraceResult& r, size_t models, bool ensemble) {
     orders_ = r.orders;
     const size_t nt = theta_i_deg_.size(), np = phi_i_deg_.size(), no = size_t(r.orders),
                  ncell = size_t(r.cells), nc = size_t(r.channels);
-    if (ncell != projected_solid_angle_.size())
-        throw std::logic_error("SimulationResult: a trace on another sensor");
+    GONIO_CHECK_MSG(ncell == projected_solid_angle_.size(), "a trace on another sensor");
+    filled_.assign(nt * np, false);
+    stop.assign(nt * np, StopReason::rays);
     const std::vector<std::string> per_order_cell{"theta_i", "phi_i", "order", "cell", "channel"},
         per_order{"theta_i", "phi_i", "order", "channel"},
         per_cell{"theta_i", "phi_i", "cell", "channel"}, per_channel{"theta_i", "phi_i", "channel"},
@@ -81,6 +81,17 @@ void SimulationResult::allocate(const TraceResult& r, size_t models) {
     achieved_error =
         Array(per_incidence, s2, "1",
               "the accuracy target's relative standard error when the run stopped (-1: no target)");
+    error_scope = ensemble ? ErrorScope::rays_and_surface : ErrorScope::rays;
+    if (ensemble) {
+        auto share = [&](const std::string& what) {
+            return Array(per_channel, s3, "1", "the surfaces' share of the variance of " + what);
+        };
+        share_l1_albedo = share("the L1 albedo");
+        share_l2plus_albedo = share("the L2+ albedo");
+        share_linf_albedo = share("the L-infinity albedo");
+        share_l1_cells = share("the L1 BRDF (median over the cells >= 0.1 of the peak)");
+        share_linf_cells = share("the L-infinity BRDF (median over the cells >= 0.1 of the peak)");
+    }
     comparisons.assign(models, {});
     for (ComparisonArrays& c : comparisons) {
         c.relative_difference = estimate(per_channel, s3, "1", "relative difference of albedos");
@@ -90,32 +101,15 @@ void SimulationResult::allocate(const TraceResult& r, size_t models) {
     }
 }
 
-void SimulationResult::append(const TraceResult& r, const std::vector<Comparison>& models,
-                              const SurfaceShares* shares, int surfaces) {
-    if (done_ == 0) {
-        allocate(r, models.size());
-        error_scope = shares ? "rays+surface" : "rays";
-        if (shares) {
-            const std::vector<size_t> s3{theta_i_deg_.size(), phi_i_deg_.size(),
-                                         size_t(r.channels)};
-            const std::vector<std::string> dims{"theta_i", "phi_i", "channel"};
-            auto share = [&](const std::string& what) {
-                return Array(dims, s3, "1", "the surfaces' share of the variance of " + what);
-            };
-            share_l1_albedo = share("the L1 albedo");
-            share_l2plus_albedo = share("the L2+ albedo");
-            share_linf_albedo = share("the L-infinity albedo");
-            share_l1_cells = share("the L1 BRDF (median over the cells >= 0.1 of the peak)");
-            share_linf_cells =
-                share("the L-infinity BRDF (median over the cells >= 0.1 of the peak)");
-        }
-    }
-    if ((shares != nullptr) != (error_scope == "rays+surface"))
-        throw std::logic_error("SimulationResult: ensembles and single surfaces mixed");
-    if (complete()) throw std::logic_error("SimulationResult: more incidences than the sweep");
-    if (r.orders != orders_ || models.size() != comparisons.size())
-        throw std::logic_error("SimulationResult: an incidence of another layout");
-    const size_t t = done_ / phi_i_deg_.size(), p = done_ % phi_i_deg_.size();
+void SimulationResult::put(size_t t, size_t p, const TraceResult& r,
+                           const std::vector<Comparison>& models, const SurfaceShares* shares,
+                           int surfaces) {
+    if (done_ == 0) allocate(r, models.size(), shares != nullptr);
+    GONIO_CHECK_MSG((shares != nullptr) == (error_scope == ErrorScope::rays_and_surface),
+                    "ensembles and single surfaces mixed");
+    GONIO_CHECK(t < theta_i_deg_.size() && p < phi_i_deg_.size() && !filled_[index(t, p)]);
+    GONIO_CHECK_MSG(r.orders == orders_ && models.size() == comparisons.size(),
+                    "an incidence of another layout");
     const size_t nc = size_t(r.channels), ncell = size_t(r.cells);
     const int B = r.batches, no = r.orders;
     // Energy over the cell's projected solid angle: the same for a cell and its mirror image.
@@ -175,7 +169,7 @@ void SimulationResult::append(const TraceResult& r, const std::vector<Comparison
         share_linf_cells.put({t, p}, shares->linf_cells);
     }
     achieved_error.at({t, p}) = r.achieved_error;
-    stop.push_back(r.stop);
+    stop[index(t, p)] = r.stop;
     for (size_t m = 0; m < models.size(); ++m) {
         ComparisonArrays& c = comparisons[m];
         const Comparison& x = models[m];
@@ -187,6 +181,7 @@ void SimulationResult::append(const TraceResult& r, const std::vector<Comparison
         c.ratio.mean.put({t, p}, x.ratio);
         c.ratio.error.put({t, p}, x.ratio_stderr);
     }
+    filled_[index(t, p)] = true;
     ++done_;
 }
 

@@ -4,6 +4,7 @@
 // its standard error, and each model's comparison with the simulation. Every derived quantity
 // (L1, L2+ and L-infinity maps and albedos, their transmitted counterparts and all their errors)
 // is computed here, once, from each incidence's trace and its batches.
+#include "core/enum_names.h"
 #include "core/named_array.h"
 #include "gonio/model/model_comparison.h"
 #include "gonio/trace/trace_result.h"
@@ -13,6 +14,15 @@
 #include <vector>
 
 namespace gonio {
+
+// What the standard errors include: the rays on one surface (conditional on it), or the rays and
+// the surfaces of an ensemble (the error of the NDF's BSDF).
+enum class ErrorScope { rays, rays_and_surface };
+template <>
+struct EnumNames<ErrorScope> {
+    static constexpr const char* what = "error scope";
+    static constexpr const char* names[] = {"rays", "rays+surface"};
+};
 
 // A Monte Carlo figure: the mean and its standard error (batch means), of the same layout.
 struct Estimate {
@@ -47,23 +57,24 @@ class SimulationResult {
     SimulationResult(std::vector<double> theta_i_deg, std::vector<double> phi_i_deg,
                      const BeckersSensor& sensor);
 
-    // Appends the next incidence's trace and its models' comparisons (in the case's model order).
-    // An ensemble's trace (its batches are the surfaces) comes with its surfaces' variance shares
-    // and their number.
-    void append(const TraceResult& r, const std::vector<Comparison>& models,
-                const SurfaceShares* shares = nullptr, int realisations = 1);
-    // Incidences appended so far, and whether the sweep is complete.
+    // Puts incidence (t, p)'s trace and its models' comparisons (in the case's model order), in
+    // any order of the incidences. An ensemble's trace (its batches are the surfaces) comes with
+    // its surfaces' variance shares and their number.
+    void put(size_t t, size_t p, const TraceResult& r, const std::vector<Comparison>& models,
+             const SurfaceShares* shares = nullptr, int realisations = 1);
+    // Incidences put so far, and whether the sweep is complete.
     size_t incidences() const { return done_; }
     bool complete() const { return done_ == theta_i_deg_.size() * phi_i_deg_.size(); }
+    bool has(size_t t, size_t p) const { return !filled_.empty() && filled_[index(t, p)]; }
     int orders() const { return orders_; } // K + 1: orders 1..K, then "K+1 or more"
+    const std::vector<double>& projected_solid_angle() const { return projected_solid_angle_; }
 
     SimulatedSide reflected, transmitted; // transmitted: transmissive materials only
     Estimate absorbed, capped, lost;      // [theta_i, phi_i, channel]
     Array unaccounted;                    // [theta_i, phi_i, channel]
     Array rays, segments, seconds, rounds, achieved_error; // [theta_i, phi_i]
-    std::vector<std::string> stop;                         // per incidence, theta_i major
-    // The errors' scope: "rays" (one surface: conditional on it) or "rays+surface" (an ensemble).
-    std::string error_scope = "rays";
+    std::vector<StopReason> stop;                          // per incidence, theta_i major
+    ErrorScope error_scope = ErrorScope::rays;
     Array realisations; // [theta_i, phi_i]: surfaces each incidence was traced on
     // Ensembles: the surfaces' share of each variance [theta_i, phi_i, channel]
     // (surface_ensemble.h).
@@ -72,11 +83,13 @@ class SimulationResult {
     std::string surface;                       // where the surface came from (cache path, input)
 
   private:
-    void allocate(const TraceResult& r, size_t models);
+    void allocate(const TraceResult& r, size_t models, bool ensemble);
+    size_t index(size_t t, size_t p) const { return t * phi_i_deg_.size() + p; }
 
     std::vector<double> theta_i_deg_, phi_i_deg_, projected_solid_angle_;
     int orders_ = 0;
     size_t done_ = 0;
+    std::vector<bool> filled_; // per incidence
 };
 
 } // namespace gonio

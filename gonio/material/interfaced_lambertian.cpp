@@ -1,5 +1,6 @@
 #include "gonio/material/interfaced_lambertian.h"
 
+#include "core/check.h"
 #include "core/quadrature.h"
 #include "gonio/material/fresnel.h"
 #include "gonio/material/material_kind.h"
@@ -69,10 +70,10 @@ bool InterfacedLambertianFacet::scatter(const Vec3& wi, const Vec3& m, Rng& rng,
                                         double* weight) const {
     const double ci = std::max(0.0, dot(wi, m));
     const int n = channels();
-    double f[16], specular = 0;
-    for (int k = 0; k < n && k < 16; ++k)
+    GONIO_DCHECK(n <= kMaxChannels); // spectrum.wavelengths' limit
+    double f[kMaxChannels], specular = 0;
+    for (int k = 0; k < n; ++k)
         specular = std::max(specular, f[k] = fresnel_dielectric(ci, eta_[k]));
-    if (n > 16) throw std::logic_error("interfaced_lambertian: at most 16 channels");
     // (No draw where nothing can be reflected: with n = 1 the facet is, stream for stream, a
     // Lambertian one.)
     if (specular > 0 && rng.uniform() < specular) { // the interface reflects [M18 Eq. 6]

@@ -63,7 +63,11 @@ std::string list_text(const std::vector<double>& v) {
 }
 
 std::vector<double> read_wavelengths(TableReader& spectrum) {
-    return spectrum.number_list(kWavelengths);
+    std::vector<double> w = spectrum.number_list(kWavelengths);
+    if (w.size() > size_t(kMaxChannels))
+        spectrum.fail("wavelengths", "has " + std::to_string(w.size()) + " values; at most " +
+                                         std::to_string(kMaxChannels) + " channels");
+    return w;
 }
 
 std::vector<double> read_per_channel(TableReader& r, const Key& key, TableReader& spectrum,

@@ -14,6 +14,9 @@
 
 namespace gonio {
 
+// The most channels (wavelengths) a material may have.
+inline constexpr int kMaxChannels = 64;
+
 struct FacetSpec {
     std::string type;        // the kind's name
     std::string description; // with its parameters, for files and listings

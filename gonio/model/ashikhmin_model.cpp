@@ -1,12 +1,12 @@
 #include "gonio/model/ashikhmin_model.h"
 
 #include "core/hemisphere_integral.h"
+#include "core/parallel.h"
 #include "gonio/model/model_kind.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <tbb/parallel_for.h>
 
 namespace gonio {
 
@@ -77,14 +77,13 @@ AshikhminModel::AshikhminModel(NormalDensity p, FresnelTerm fresnel, AshikhminSe
         return spherical_direction(t, kTwoPi * (n % phi_nodes_) / phi_nodes_);
     };
     g_.assign(size_t(nodes), 0.0);
-    tbb::parallel_for(0, nodes, [&](int n) { g_[size_t(n)] = g_exact(node_direction(n)); });
+    parallel_for(0, nodes, [&](int n) { g_[size_t(n)] = g_exact(node_direction(n)); });
     diffuse_scale_.assign(size_t(nc), 0.0), diffuse_level_.assign(size_t(nc), 1.0);
     diffuse_albedo_ = s_.rho_d;
     if (s_.diffuse == AshikhminDiffuse::none) return; // R is tabulated for the diffuse term only
     r_.assign(size_t(nodes) * nc, 0.0);
-    tbb::parallel_for(0, nodes * nc, [&](int k) {
-        r_[size_t(k)] = reflectance_exact(node_direction(k / nc), k % nc);
-    });
+    parallel_for(0, nodes * nc,
+                 [&](int k) { r_[size_t(k)] = reflectance_exact(node_direction(k / nc), k % nc); });
     // The diffuse term's scale c: with rho_d = 1 the surface returns all it receives (dielectric),
     // or f0 of it (metal): c = 1 / int (level - R(k))_+ (k.n) dw_k  [A00 Eq. 28-30].
     std::vector<double> f0(static_cast<size_t>(nc));
@@ -256,13 +255,16 @@ const ModelKind& ashikhmin_model_kind() {
             };
             ModelChoice m;
             m.name = "ashikhmin";
-            m.compared_with = s.diffuse != AshikhminDiffuse::none ? "linf" : "l1";
+            m.compared_with =
+                s.diffuse != AshikhminDiffuse::none ? ModelTarget::linf : ModelTarget::l1;
             m.description = "Ashikhmin-Premoze-Shirley generated BRDF [A00 Eq. 11, 14, 25-30] of " +
                             density(*c.ndf).description;
-            m.build = [ndf = c.ndf, density, fresnel = c.facets.fresnel,
-                       s](const HeightField*) -> std::unique_ptr<BrdfModel> {
-                return std::make_unique<AshikhminModel>(density(*ndf), fresnel, s);
-            };
+            m.build =
+                integrated(c,
+                           [ndf = c.ndf, density, fresnel = c.facets.fresnel,
+                            s](const HeightField*) -> std::unique_ptr<BrdfModel> {
+                               return std::make_unique<AshikhminModel>(density(*ndf), fresnel, s);
+                           });
             return m;
         }};
     return k;

@@ -1,10 +1,10 @@
 #include "gonio/model/cell_integrator.h"
 
+#include "core/parallel.h"
 #include "core/quadrature.h"
 
 #include <algorithm>
 #include <cmath>
-#include <tbb/parallel_for.h>
 
 namespace gonio {
 
@@ -166,7 +166,7 @@ std::vector<double> model_cell_energy(const BrdfModel& model, const Vec3& wi,
         if (std::isinf(term->narrowest_feature())) tq.points = std::min(q.points, 2);
         const CellIntegrator integrator(*term, wi, tq);
         // Cells are independent: the result does not depend on the thread count.
-        tbb::parallel_for(0, sensor.cell_count(), [&](int c) {
+        parallel_for(0, sensor.cell_count(), [&](int c) {
             const SensorCell& cell = sensor.cell(c);
             const Rect r{std::cos(cell.theta_max), std::cos(cell.theta_min), cell.phi_min,
                          cell.phi_max};

@@ -113,16 +113,17 @@ const ModelKind& il_model_kind() {
             const int body_points = static_cast<int>(r.integer(kBodyPoints));
             ModelChoice m;
             m.name = "il";
-            m.compared_with = "l1";
+            m.compared_with = ModelTarget::l1;
             m.description = "interfaced Lambertian microfacets, single scattering f_s + f_b "
                             "[M18 Eq. 12-13], masking " +
                             std::string(masking_name(c.masking));
-            m.build = [ndf = c.ndf, eta = c.facets.interface_eta, albedo = c.facets.albedo,
-                       masking = c.masking,
-                       body_points](const HeightField*) -> std::unique_ptr<BrdfModel> {
-                return std::make_unique<InterfacedLambertianModel>(*ndf, eta, albedo, masking,
-                                                                   body_points);
-            };
+            m.build = integrated(c,
+                                 [ndf = c.ndf, eta = c.facets.interface_eta,
+                                  albedo = c.facets.albedo, masking = c.masking,
+                                  body_points](const HeightField*) -> std::unique_ptr<BrdfModel> {
+                                     return std::make_unique<InterfacedLambertianModel>(
+                                         *ndf, eta, albedo, masking, body_points);
+                                 });
             return m;
         }};
     return k;

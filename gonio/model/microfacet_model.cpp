@@ -71,13 +71,15 @@ const ModelKind& l1_model_kind() {
                                      " facets use \"il\" (and \"vcavity\")");
             ModelChoice m;
             m.name = "l1";
-            m.compared_with = "l1";
+            m.compared_with = ModelTarget::l1;
             m.description = "Model L1: the specular microfacet BRDF [R19 Eq. 2], masking " +
                             std::string(masking_name(c.masking));
-            m.build = [ndf = c.ndf, fresnel = c.facets.fresnel,
-                       masking = c.masking](const HeightField*) -> std::unique_ptr<BrdfModel> {
-                return std::make_unique<MicrofacetModel>(*ndf, fresnel, masking);
-            };
+            m.build =
+                integrated(c,
+                           [ndf = c.ndf, fresnel = c.facets.fresnel,
+                            masking = c.masking](const HeightField*) -> std::unique_ptr<BrdfModel> {
+                               return std::make_unique<MicrofacetModel>(*ndf, fresnel, masking);
+                           });
             return m;
         }};
     return k;

@@ -7,7 +7,8 @@
 
 namespace gonio {
 
-Comparison compare_model(const TraceResult& sim, bool all_orders, const ModelMap& model) {
+Comparison compare_model(const TraceResult& sim, ModelTarget target, const ModelIncidence& model) {
+    const bool all_orders = target == ModelTarget::linf;
     const size_t nc = size_t(sim.channels), cells = size_t(sim.cells), map = cells * nc;
     const int B = sim.batches, MB = model.batches;
     const std::vector<double> s_batches =
@@ -17,8 +18,8 @@ Comparison compare_model(const TraceResult& sim, bool all_orders, const ModelMap
         MB > 1 ? batch_stderr(model.energy_batches, MB) : std::vector<double>(map, 0.0);
     const std::vector<double>& m = model.energy;
     Comparison c;
-    for (auto* v : {&c.model_albedo, &c.relative_difference, &c.relative_difference_stderr, &c.sigmas, &c.distance,
-                    &c.distance_stderr})
+    for (auto* v : {&c.model_albedo, &c.relative_difference, &c.relative_difference_stderr,
+                    &c.sigmas, &c.distance, &c.distance_stderr})
         v->assign(nc, 0.0);
     c.ratio.assign(map, 0.0), c.ratio_stderr.assign(map, 0.0);
     auto sum_cells = [&](const double* v, size_t k) {

@@ -3,20 +3,12 @@
 // standard error of every figure: the simulation's from its batches, the model's from its own
 // batches when it is a Monte Carlo estimate (the V-cavity) or else its quadrature tolerance, taken
 // as an error bound. The two are independent, so their variances add.
+#include "gonio/model/cell_model.h"
 #include "gonio/trace/trace_result.h"
 
 #include <vector>
 
 namespace gonio {
-
-// A model's cell energies at one incidence, [cell][channel], and, for a Monte Carlo model, the
-// batches whose mean they are, [batch][cell][channel].
-struct ModelMap {
-    std::vector<double> energy;
-    double relative_tolerance = 0; // analytic models: the quadrature's relative tolerance
-    int batches = 0;
-    std::vector<double> energy_batches;
-};
 
 // Per channel, except the maps (per cell and channel).
 struct Comparison {
@@ -29,7 +21,7 @@ struct Comparison {
     std::vector<double> ratio, ratio_stderr;
 };
 
-// all_orders: against every order (L-infinity) instead of single scattering.
-Comparison compare_model(const TraceResult& sim, bool all_orders, const ModelMap& model);
+// The model against simulated L1 or L-infinity, as `target` says.
+Comparison compare_model(const TraceResult& sim, ModelTarget target, const ModelIncidence& model);
 
 } // namespace gonio

@@ -42,7 +42,7 @@ const std::vector<const ModelKind*>& model_kinds() {
 }
 
 ModelSettings read_models(TableReader r, const FacetSpec& facets, std::shared_ptr<const Ndf> ndf,
-                          long long trace_rays) {
+                          long long trace_rays, int max_bounces) {
     ModelSettings s;
     const std::string masking = r.string(kMasking);
     for (int k = 0; k < 3; ++k)
@@ -53,7 +53,8 @@ ModelSettings read_models(TableReader r, const FacetSpec& facets, std::shared_pt
     const std::vector<std::string> names =
         r.string_list(models_key().name, models_key().choices,
                       std::vector<std::string>{facets.diffuse ? "il" : "l1"});
-    const ModelContext context{facets, std::move(ndf), s.masking, trace_rays};
+    const ModelContext context{facets,       std::move(ndf), s.masking,
+                               s.quadrature, trace_rays,     max_bounces};
     // Every chosen kind reads its keys even with evaluate = false, so that they count as used.
     for (const std::string& name : names)
         for (const ModelKind* kind : model_kinds())

@@ -8,6 +8,7 @@
 #include "gonio/material/material_kind.h"
 #include "gonio/model/brdf_model.h"
 #include "gonio/model/cell_integrator.h"
+#include "gonio/model/cell_model.h"
 #include "heightfield/heightfield.h"
 #include "heightfield/ndf/ndf.h"
 
@@ -18,24 +19,36 @@
 
 namespace gonio {
 
-// What every model of a case shares: the facets, the distribution, the masking term, and the
-// cell quadrature.
+// What every model of a case shares: the facets, the distribution, the masking term, the cell
+// quadrature, and the trace's settings that Monte Carlo models follow.
 struct ModelContext {
     const FacetSpec& facets;
     std::shared_ptr<const Ndf> ndf;
     MaskingForm masking;
+    CellQuadrature quadrature;
     long long trace_rays; // the case's rays per incidence (the V-cavity's default)
+    int max_bounces;      // the case's bounce cap
 };
 
 struct ModelChoice {
-    std::string name;           // the kind's name
-    std::string description;    // with its settings, for the file
-    std::string compared_with;  // "l1" (single scattering) or "linf" (every order)
+    std::string name;        // the kind's name
+    std::string description; // with its settings, for the file
+    ModelTarget compared_with = ModelTarget::l1;
     bool needs_surface = false; // fitted to the traced surface (the P-BRDF)
-    // An analytic model, integrated over the cells; empty for a Monte Carlo estimator.
-    std::function<std::unique_ptr<BrdfModel>(const HeightField* surface)> build;
-    long long rays = 0; // Monte Carlo estimators: paths per incidence
+    // The model, ready to evaluate on the cells; `surface` is the case's first surface (null
+    // unless needs_surface).
+    std::function<std::unique_ptr<CellModel>(const HeightField* surface)> build;
 };
+
+// The builder of an analytic model: make(surface) integrated over the cells with the case's
+// quadrature.
+template <class Make>
+std::function<std::unique_ptr<CellModel>(const HeightField*)> integrated(const ModelContext& c,
+                                                                         Make make) {
+    return [quadrature = c.quadrature, make](const HeightField* s) -> std::unique_ptr<CellModel> {
+        return std::make_unique<IntegratedModel>(make(s), quadrature);
+    };
+}
 
 struct ModelKind {
     std::string name;
@@ -53,7 +66,7 @@ struct ModelSettings {
     std::vector<ModelChoice> models; // empty with evaluate = false
 };
 ModelSettings read_models(TableReader r, const FacetSpec& facets, std::shared_ptr<const Ndf> ndf,
-                          long long trace_rays);
+                          long long trace_rays, int max_bounces);
 std::vector<KeyGroup> model_key_groups();
 const char* masking_name(MaskingForm form);
 std::vector<KeyGroup> ashikhmin_key_groups(); // the nested table model.ashikhmin

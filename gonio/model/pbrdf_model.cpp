@@ -1,5 +1,6 @@
 #include "gonio/model/pbrdf_model.h"
 
+#include "core/parallel.h"
 #include "gonio/model/model_kind.h"
 
 #include <algorithm>
@@ -7,7 +8,6 @@
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
-#include <tbb/parallel_for.h>
 
 namespace gonio {
 
@@ -38,7 +38,7 @@ std::vector<SlopeLobe> fit_slope_lobes(const HeightField& s, double sigma_eps) {
         total += w1[d + 2] = normal_cdf((d + 0.5) / sd) - normal_cdf((d - 0.5) / sd);
     for (double& w : w1) w /= total;
     std::vector<SlopeLobe> lobes(size_t(s.n) * s.n);
-    tbb::parallel_for(0, s.n, [&](int y) {
+    parallel_for(0, s.n, [&](int y) {
         for (int x = 0; x < s.n; ++x) {
             double ep = 0, eq = 0, epp = 0, eqq = 0, epq = 0; // C19 Eq. 5-6
             for (int dy = -2; dy <= 2; ++dy)
@@ -79,7 +79,7 @@ PBrdfModel::PBrdfModel(std::vector<SlopeLobe> lobes, FresnelTerm fresnel, int th
     wide_ = std::sqrt(2 * std::max(sx2, sy2));
     build_slope_grid();
     table_.assign(size_t(theta_nodes_) * phi_nodes_, 0.0);
-    tbb::parallel_for(0, theta_nodes_ * phi_nodes_, [&](int k) {
+    parallel_for(0, theta_nodes_ * phi_nodes_, [&](int k) {
         const double t = std::min(kThetaTop, kPi / 2 * (k / phi_nodes_) / (theta_nodes_ - 1));
         const Vec3 v = spherical_direction(t, kTwoPi * (k % phi_nodes_) / phi_nodes_);
         table_[size_t(k)] = visible_area(v) / v.z;
@@ -245,14 +245,16 @@ const ModelKind& pbrdf_model_kind() {
                                      " facets use \"il\" (and \"vcavity\")");
             ModelChoice m;
             m.name = "pbrdf";
-            m.compared_with = "l1";
+            m.compared_with = ModelTarget::l1;
             m.needs_surface = true;
             m.description = "Chermain et al.'s P-BRDF [C19 Eq. 7, 9, 13-17]: one non-centred "
                             "Beckmann lobe per texel of the surface, the whole patch as footprint";
-            m.build = [sigma_eps = r.number(kSigmaEps), fresnel = c.facets.fresnel](
-                          const HeightField* surface) -> std::unique_ptr<BrdfModel> {
-                return std::make_unique<PBrdfModel>(fit_slope_lobes(*surface, sigma_eps), fresnel);
-            };
+            m.build = integrated(c,
+                                 [sigma_eps = r.number(kSigmaEps), fresnel = c.facets.fresnel](
+                                     const HeightField* surface) -> std::unique_ptr<BrdfModel> {
+                                     return std::make_unique<PBrdfModel>(
+                                         fit_slope_lobes(*surface, sigma_eps), fresnel);
+                                 });
             return m;
         }};
     return k;

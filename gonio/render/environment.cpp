@@ -96,4 +96,10 @@ double Environment::pdf(const Vec3& d) const {
     return texel_p_[size_t(y) * w + x] / ((z0 - z1) * kTwoPi / w);
 }
 
+Environment Environment::named(const std::string& text) {
+    if (text == "uniform") return uniform(1.0);
+    if (text == "sky") return overcast_sky();
+    return from_exr(text);
+}
+
 } // namespace gonio

@@ -23,6 +23,8 @@ class Environment {
     // [Moon & Spencer 1942, CIE S 011/E:2003 type 1], L_z = 1, and a dark grey ground below.
     static Environment overcast_sky();
     static Environment from_exr(const std::string& path);
+    // "uniform" (radiance 1), "sky" (overcast_sky), or else a lat-long EXR map's path.
+    static Environment named(const std::string& name_or_path);
 
     Rgb radiance(const Vec3& d) const;
     // A direction with its solid-angle pdf, from two uniforms.

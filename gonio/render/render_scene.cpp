@@ -32,14 +32,9 @@ void grid(int nu, int nv, bool wrap_v, F at, std::vector<float>& pos, std::vecto
 }
 } // namespace
 
-const std::vector<std::string>& RenderScene::objects() {
-    static const std::vector<std::string> names{"sphere", "torus"};
-    return names;
-}
-
-RenderScene::RenderScene(const std::string& object) {
+RenderScene::RenderScene(RenderObject object) {
     Mesh m;
-    if (object == "sphere") {
+    if (object == RenderObject::sphere) {
         centre_ = {0, 0, 1};
         radius_ = 1;
         grid(
@@ -51,7 +46,7 @@ RenderScene::RenderScene(const std::string& object) {
                 t = {-std::sin(phi), std::cos(phi), 0};
             },
             m.position, m.normal, m.tangent, m.index);
-    } else if (object == "torus") {
+    } else {
         const double R = 1.0, r = 0.45; // lying on the floor: its axis is z
         centre_ = {0, 0, r};
         radius_ = R + r;
@@ -64,8 +59,6 @@ RenderScene::RenderScene(const std::string& object) {
                 t = {-std::sin(a), std::cos(a), 0};
             },
             m.position, m.normal, m.tangent, m.index);
-    } else {
-        throw std::invalid_argument("unknown object '" + object + "' (sphere or torus)");
     }
     device_ = rtcNewDevice(nullptr);
     if (!device_) throw std::runtime_error("Embree: cannot create a device");

@@ -2,6 +2,7 @@
 // The scene a render shows: a procedurally made object standing on a floor, as Embree triangle
 // meshes with smooth shading normals and tangents (for anisotropic BSDFs). Objects: a sphere, and
 // a torus lying on the floor (concave: it sees itself, so inter-reflections show).
+#include "core/enum_names.h"
 #include "core/math.h"
 
 #include <embree3/rtcore.h>
@@ -17,15 +18,20 @@ struct SceneHit {
     Vec3 p, ng, n, tangent; // position, geometric normal, shading normal, shading tangent
 };
 
+enum class RenderObject { sphere, torus };
+template <>
+struct EnumNames<RenderObject> {
+    static constexpr const char* what = "object";
+    static constexpr const char* names[] = {"sphere", "torus"};
+};
+
 class RenderScene {
   public:
-    // `object`: "sphere" or "torus"; throws std::invalid_argument naming the allowed ones.
-    explicit RenderScene(const std::string& object);
+    explicit RenderScene(RenderObject object);
     ~RenderScene();
     RenderScene(const RenderScene&) = delete;
     RenderScene& operator=(const RenderScene&) = delete;
 
-    static const std::vector<std::string>& objects();
     SceneHit intersect(const Vec3& origin, const Vec3& direction) const;
     bool occluded(const Vec3& origin, const Vec3& direction) const;
     // Where the camera looks and how far the object extends (for framing).

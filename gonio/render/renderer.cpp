@@ -1,12 +1,11 @@
 #include "gonio/render/renderer.h"
 
+#include "core/parallel.h"
 #include "core/random.h"
-#include "gonio/cli/progress.h"
 
 #include <chrono>
 #include <cmath>
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 namespace gonio {
 
@@ -99,41 +98,38 @@ RenderResult render(const RenderScene& scene, const Environment& env, const Surf
     };
 
     std::vector<double> noise(size_t(s.width) * s.height, 0.0);
-    Progress progress(s.height, s.quiet);
     const int band = 8;
     for (int y0 = 0; y0 < s.height; y0 += band) {
         const int y1 = std::min(s.height, y0 + band);
-        tbb::parallel_for(tbb::blocked_range<int>(y0 * s.width, y1 * s.width, 16),
-                          [&](const tbb::blocked_range<int>& r) {
-                              for (int pixel = r.begin(); pixel != r.end(); ++pixel) {
-                                  const int x = pixel % s.width, y = pixel / s.width;
-                                  Rng rng{s.seed, std::uint64_t(pixel)};
-                                  Rgb sum{0, 0, 0};
-                                  double halves[2] = {0, 0};
-                                  int object_hits = 0;
-                                  for (int k = 0; k < s.spp; ++k) {
-                                      const double px = (x + rng.uniform()) / s.width * 2 - 1;
-                                      const double py = 1 - (y + rng.uniform()) / s.height * 2;
-                                      const Vec3 d =
-                                          normalize(forward + right * (px * tan_half * aspect) +
-                                                    up * (py * tan_half));
-                                      bool hit_object = false;
-                                      const Rgb L = radiance(eye, d, rng, hit_object);
-                                      object_hits += hit_object;
-                                      for (int c = 0; c < 3; ++c) sum[c] += L[c];
-                                      halves[k & 1] += 0.2126 * L[0] + 0.7152 * L[1] + 0.0722 * L[2];
-                                  }
-                                  float* out_px = out.image.at(x, y);
-                                  for (int c = 0; c < 3; ++c) out_px[c] = float(sum[c] / s.spp);
-                                  out.object[size_t(pixel)] = object_hits * 2 > s.spp;
-                                  const int even = (s.spp + 1) / 2, odd = s.spp / 2;
-                                  noise[size_t(pixel)] =
-                                      odd > 0 ? 0.5 * (halves[0] / even - halves[1] / odd) : 0.0;
-                              }
-                          });
-        progress.update(y1, "rows");
+        parallel_for_ranges<int>(
+            y0 * s.width, y1 * s.width, 16, [&](const tbb::blocked_range<int>& r) {
+                for (int pixel = r.begin(); pixel != r.end(); ++pixel) {
+                    const int x = pixel % s.width, y = pixel / s.width;
+                    Rng rng{s.seed, std::uint64_t(pixel)};
+                    Rgb sum{0, 0, 0};
+                    double halves[2] = {0, 0};
+                    int object_hits = 0;
+                    for (int k = 0; k < s.spp; ++k) {
+                        const double px = (x + rng.uniform()) / s.width * 2 - 1;
+                        const double py = 1 - (y + rng.uniform()) / s.height * 2;
+                        const Vec3 d = normalize(forward + right * (px * tan_half * aspect) +
+                                                 up * (py * tan_half));
+                        bool hit_object = false;
+                        const Rgb L = radiance(eye, d, rng, hit_object);
+                        object_hits += hit_object;
+                        for (int c = 0; c < 3; ++c) sum[c] += L[c];
+                        halves[k & 1] += 0.2126 * L[0] + 0.7152 * L[1] + 0.0722 * L[2];
+                    }
+                    float* out_px = out.image.at(x, y);
+                    for (int c = 0; c < 3; ++c) out_px[c] = float(sum[c] / s.spp);
+                    out.object[size_t(pixel)] = object_hits * 2 > s.spp;
+                    const int even = (s.spp + 1) / 2, odd = s.spp / 2;
+                    noise[size_t(pixel)] =
+                        odd > 0 ? 0.5 * (halves[0] / even - halves[1] / odd) : 0.0;
+                }
+            });
+        if (s.progress) s.progress(y1, s.height);
     }
-    progress.finish();
     double se2 = 0, v2 = 0;
     for (size_t k = 0; k < noise.size(); ++k)
         if (out.object[k]) {

@@ -12,6 +12,7 @@
 #include "gonio/render/surface_bsdf.h"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace gonio {
@@ -25,7 +26,8 @@ struct RenderSettings {
     Vec3 light_direction{0, 0, 1}; // towards the light
     double light_irradiance = 1.5; // on a surface facing it
     double camera_elevation_deg = 22, camera_azimuth_deg = -60, fov_deg = 32;
-    bool quiet = true; // progress on a terminal otherwise
+    // Told after each band of rows: rows done, of `height` (the command line's progress line).
+    std::function<void(int rows_done, int rows)> progress;
 };
 
 struct RenderResult {

@@ -9,27 +9,6 @@
 
 namespace gonio {
 
-const char* name_of(TableOrder o) {
-    switch (o) {
-    case TableOrder::l1:
-        return "l1";
-    case TableOrder::l2plus:
-        return "l2plus";
-    case TableOrder::linf:
-        return "linf";
-    case TableOrder::transmission:
-        return "t";
-    }
-    return "?";
-}
-
-TableOrder table_order_named(const std::string& name) {
-    for (TableOrder o :
-         {TableOrder::l1, TableOrder::l2plus, TableOrder::linf, TableOrder::transmission})
-        if (name == name_of(o)) return o;
-    throw std::invalid_argument("unknown order '" + name + "' (l1, l2plus, linf or t)");
-}
-
 TableData table_data(const ResultCase& c, TableOrder order) {
     if (!c.simulated)
         throw std::runtime_error(c.file + ": case " + c.name +

@@ -15,6 +15,7 @@
 // f is a mixture of node lobes with non-negative weights, so sampling picks a node in proportion
 // to weight times node integral and then samples that node's lobe exactly: the pdf returned is
 // the mixture's, exactly proportional to the sampling scalar (the mean over channels) times cos.
+#include "core/enum_names.h"
 #include "core/math.h"
 #include "gonio/table/sensor_lobe.h"
 #include "sensor/beckers_sensor.h"
@@ -27,10 +28,13 @@ namespace gonio {
 
 struct ResultCase;
 
+// The orders a table is built from: single scattering, multiple, every order, transmission.
 enum class TableOrder { l1, l2plus, linf, transmission };
-const char* name_of(TableOrder o); // "l1", "l2plus", "linf", "t"
-// Throws std::invalid_argument listing the names.
-TableOrder table_order_named(const std::string& name);
+template <>
+struct EnumNames<TableOrder> {
+    static constexpr const char* what = "order";
+    static constexpr const char* names[] = {"l1", "l2plus", "linf", "t"};
+};
 
 // What a table is built from: one order of one case's sweep.
 struct TableData {

@@ -2,6 +2,7 @@
 
 #include "gonio/io/hdf5_handles.h"
 #include "gonio/io/result_reader.h"
+#include "heightfield/surface_generator.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -9,8 +10,8 @@
 namespace gonio {
 
 bool case_is_isotropic(const CaseConfig& c) {
-    if (c.surface.generator == Generator::input || c.surface.constraint != Constraint::none)
-        return false;
+    // A measured map, or a generator whose facets follow a shape rather than the NDF.
+    if (!c.surface.generator || !c.surface.generator->follows_ndf(c.surface)) return false;
     const Ndf& ndf = *c.ndf;
     for (double theta_deg : {3.0, 12.0, 27.0, 45.0, 63.0, 78.0, 86.0}) {
         const double reference = ndf.D(spherical_direction(radians(theta_deg), 0.0));

@@ -1,11 +1,12 @@
 #include "gonio/trace/backend_comparison.h"
 
+#include "core/parallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
-#include <tbb/parallel_for.h>
 
 namespace gonio {
 
@@ -72,9 +73,8 @@ BackendComparison compare_backends(const Scene& reference, const Scene& other,
                                    std::size_t first, std::size_t last) {
     last = std::min(last, segments.size() / 6);
     tbb::combinable<BackendComparison> parts;
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(first, std::max(first, last), 4096),
-        [&](const tbb::blocked_range<std::size_t>& range) {
+    parallel_for_ranges<std::size_t>(
+        first, std::max(first, last), 4096, [&](const tbb::blocked_range<std::size_t>& range) {
             BackendComparison& c = parts.local();
             for (std::size_t k = range.begin(); k < range.end(); ++k) {
                 const float* s = &segments[6 * k];

@@ -59,18 +59,18 @@ TraceResult run_batched(const TraceSettings& st, long long per_batch, BatchTally
         res.achieved_error = error;
         res.seconds = seconds;
         if (error <= target.relative_error) {
-            res.stop = "target";
+            res.stop = StopReason::target;
             return res;
         }
         if (done >= max_rounds) {
-            res.stop = "max_rays";
+            res.stop = StopReason::max_rays;
             return res;
         }
         const double per_round = seconds / double(done);
         const long long affordable =
             (long long)std::floor((target.max_seconds - seconds) / per_round);
         if (affordable < 1) {
-            res.stop = "max_seconds";
+            res.stop = StopReason::max_seconds;
             return res;
         }
         // The error falls as 1/sqrt(rays): aim a little past the predicted need, since the error

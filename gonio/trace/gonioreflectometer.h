@@ -28,7 +28,7 @@ struct TraceSettings {
     std::uint64_t seed = 1;
     std::uint64_t stream = 0; // distinguishes cases and incidences (mixed into every block's key)
     AccuracyTarget target;    // when active, `rays` is one round and rounds are added
-    TraceBackend backend = kDefaultTraceBackend; // what the case's Scene is built with
+    const TraceBackendKind* backend = &default_trace_backend(); // what the Scene is built with
     // A shard of a single-incidence job traces only the batches b with b mod count = index (the
     // others stay empty); combine_batch_shards puts the parts back together exactly.
     int batch_shard_index = 0, batch_shard_count = 1;

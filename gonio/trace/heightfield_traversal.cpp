@@ -1,10 +1,11 @@
 #include "gonio/trace/heightfield_traversal.h"
 
+#include "core/parallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <tbb/parallel_for.h>
 
 // The edge functions must be exactly antisymmetric (see the header): no fused multiply-add.
 #pragma GCC optimize("fp-contract=off")
@@ -132,7 +133,7 @@ HeightfieldTraversal::HeightfieldTraversal(const HeightField& s)
         for (int i = 0; i < n + span; ++i) wrapped[size_t(i)] = (i - 1 + n) % n;
         std::vector<float> rows(size_t(n) * size_t(w));
         beam_window_.resize(size_t(w) * size_t(w));
-        tbb::parallel_for(0, n, [&](int y) {
+        parallel_for(0, n, [&](int y) {
             const float* row = h_.data() + size_t(y) * size_t(v);
             for (int i = 0; i < w; ++i) {
                 float c = row[wrapped[size_t(2 * i)]];
@@ -140,7 +141,7 @@ HeightfieldTraversal::HeightfieldTraversal(const HeightField& s)
                 rows[size_t(y) * size_t(w) + size_t(i)] = c;
             }
         });
-        tbb::parallel_for(0, w, [&](int j) {
+        parallel_for(0, w, [&](int j) {
             float* out = beam_window_.data() + size_t(j) * size_t(w);
             const float* first = rows.data() + size_t(wrapped[size_t(2 * j)]) * size_t(w);
             std::copy(first, first + w, out);
@@ -179,7 +180,7 @@ BeamEntry HeightfieldTraversal::beam_entry(const Vec3& d, double z_start, long l
         i -= int(g < double(i));
         return i < 0 ? i + n : i >= n ? i - n : i;
     };
-    tbb::parallel_for(0, w, [&](int bj) {
+    parallel_for(0, w, [&](int bj) {
         for (int bi = 0; bi < w; ++bi) {
             const double x0 = bi * b * spacing_, y0 = bj * b * spacing_;
             double clear = 0;

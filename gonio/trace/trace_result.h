@@ -2,10 +2,22 @@
 // What a Monte Carlo beam (the simulator, the V-cavity estimator) reports: the exits per order and
 // sensor cell, the energy ledger, each as the mean of B independent batches with its standard
 // error, and the batches themselves for the errors of derived quantities (core/batch_means.h).
+#include "core/enum_names.h"
+
 #include <string>
 #include <vector>
 
 namespace gonio {
+
+// How a trace (or an ensemble's passes) ended: the rays asked for; the accuracy target met (or,
+// for an ensemble's sized pass, not met); or a budget of the target spent first.
+enum class StopReason { rays, target, target_not_met, max_rays, max_seconds, max_realisations };
+template <>
+struct EnumNames<StopReason> {
+    static constexpr const char* what = "stop reason";
+    static constexpr const char* names[] = {"rays",     "target",      "target_not_met",
+                                            "max_rays", "max_seconds", "max_realisations"};
+};
 
 // Fractions of the incident power, per channel.
 struct EnergyLedger {
@@ -39,10 +51,8 @@ struct TraceResult {
     std::vector<double> energy_batches, transmitted_batches;
     EnergyLedger ledger_batches;
 
-    // How the run ended: "rays" (the rays asked for), "target" (the accuracy target was met),
-    // "max_rays" or "max_seconds" (the target's budget ran out first).
-    std::string stop = "rays";
-    long long rounds = 1;       // passes over every batch
+    StopReason stop = StopReason::rays; // how the run ended
+    long long rounds = 1;               // passes over every batch
     double achieved_error = -1; // the target quantity's relative standard error (-1: no target)
 };
 

@@ -20,11 +20,20 @@ const Key kMaxBounces = Key::integer("max_bounces", {1, 1e6},
                                      "rays still bouncing are cut (ledger: capped); 1 traces L1 "
                                      "only")
                             .fallback(1000.0);
-const Key kBackend = Key::string("backend", {"embree", "heightfield"},
-                                 "what traces the rays: Embree 3 (a BVH over the grid) or the "
-                                 "height-field traversal (the same triangles, walked cell by cell "
-                                 "over a min-max pyramid); the same rays either way")
-                         .fallback(backend_name(kDefaultTraceBackend));
+// The backends' names and summaries from their registry (trace_backend.h).
+const Key& backend_key() {
+    static const Key key = [] {
+        std::vector<std::string> names;
+        std::string meaning = "what traces the rays (the same triangles and hits either way):";
+        for (const TraceBackendKind* b : trace_backends()) {
+            names.push_back(b->name);
+            meaning +=
+                std::string(names.size() > 1 ? ";" : "") + " `" + b->name + "`, " + b->summary;
+        }
+        return Key::string("backend", names, meaning).fallback(default_trace_backend().name);
+    }();
+    return key;
+}
 } // namespace
 
 TraceSettings read_trace(TableReader& r) {
@@ -34,12 +43,12 @@ TraceSettings read_trace(TableReader& r) {
     s.max_bounces = static_cast<int>(r.integer(kMaxBounces));
     s.batches = static_cast<int>(r.integer(kBatches));
     s.target = read_accuracy_target(r, s.rays);
-    s.backend = parse_backend(r.string(kBackend));
+    s.backend = &trace_backend_named(r.string(backend_key()));
     return s;
 }
 
 std::vector<KeyGroup> trace_key_groups() {
-    std::vector<Key> keys{kRays, kBatches, kOrders, kMaxBounces, kBackend};
+    std::vector<Key> keys{kRays, kBatches, kOrders, kMaxBounces, backend_key()};
     for (const Key& k : accuracy_target_keys()) keys.push_back(k);
     return {{"trace", "", "", keys}};
 }

@@ -1,6 +1,7 @@
 #include "heightfield/ndf/anisotropic_blend.h"
 
 #include "core/catmull_rom.h"
+#include "core/parallel.h"
 #include "core/quadrature.h"
 #include "core/random.h"
 #include "heightfield/ndf/ndf_family.h"
@@ -9,7 +10,6 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <tbb/parallel_for.h>
 
 namespace gonio {
 
@@ -42,7 +42,7 @@ AnisotropicBlend::Component AnisotropicBlend::prepare(std::unique_ptr<Ndf> ndf, 
     const Ndf& d = *ndf;
     // P and K of the header, with the azimuthal integrals of R19 Eq. 14 in closed form:
     // for a = cos t_o cos t_m < b = sin t_o sin t_m only |psi| < C = acos(-a / b) sees o.
-    tbb::parallel_for(1, kIntervals + 1, [&](int j) {
+    parallel_for(1, kIntervals + 1, [&](int j) {
         const double to = 0.5 * kPi * j / kIntervals, co = std::cos(to), so = std::sin(to);
         const double split = 0.5 * kPi - to;
         auto lit = [&](double tm) {

@@ -1,5 +1,6 @@
 #include "heightfield/ndf/gaussian_angles.h"
 
+#include "core/check.h"
 #include "core/quadrature.h"
 #include "heightfield/ndf/ndf_family.h"
 
@@ -21,10 +22,11 @@ double GaussianAngles::inverse_normalisation_series(double sigma) {
 
 namespace {
 RadialProfile gaussian_profile(double sigma, double theta_max) {
-    if (!(sigma >= GaussianAngles::kSigmaMin && sigma <= GaussianAngles::kSigmaMax))
-        throw std::invalid_argument("gaussian: sigma must be in [0.001, 1.5] rad");
-    if (!(theta_max >= GaussianAngles::kThetaMaxMin && theta_max <= GaussianAngles::kThetaMaxMax))
-        throw std::invalid_argument("gaussian: theta_max must be in [60, 89.999] deg");
+    // The keys' ranges (below), checked where they are read.
+    using G = GaussianAngles;
+    GONIO_DCHECK(sigma >= radians(G::kSigmaMinDeg) && sigma <= radians(G::kSigmaMaxDeg));
+    GONIO_DCHECK(theta_max >= radians(G::kThetaMaxMinDeg) &&
+                 theta_max <= radians(G::kThetaMaxMaxDeg));
     RadialProfile f;
     f.name = "gaussian";
     f.parameters = parameter_list({{"sigma", sigma}, {"theta_max", theta_max}});
@@ -51,11 +53,13 @@ GaussianAngles::GaussianAngles(double sigma, double theta_max)
 namespace gonio {
 namespace {
 // Degrees in the config, like every angle; the range is the constructor's in radians.
-const Key kSigma = Key::number("sigma", {0.0573, 85.94}, "σ of the Gaussian of angles")
-                       .in_unit("degrees")
-                       .cited("M18 Eq. 14");
+const Key kSigma =
+    Key::number("sigma", {GaussianAngles::kSigmaMinDeg, GaussianAngles::kSigmaMaxDeg},
+                "σ of the Gaussian of angles")
+        .in_unit("degrees")
+        .cited("M18 Eq. 14");
 const Key kThetaMax =
-    Key::number("theta_max", {60, 89.999},
+    Key::number("theta_max", {GaussianAngles::kThetaMaxMinDeg, GaussianAngles::kThetaMaxMaxDeg},
                 "where the Gaussian is cut (uncut, its 1/cos θ makes Smith's Λ infinite)")
         .in_unit("degrees")
         .fallback(89.9);

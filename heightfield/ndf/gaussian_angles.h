@@ -17,9 +17,10 @@ namespace gonio {
 
 class GaussianAngles final : public RadialNdf {
   public:
-    static constexpr double kSigmaMin = 1e-3, kSigmaMax = 1.5; // radians
+    // The keys' ranges, in degrees as configs give them (sigma: 0.001 to 1.5 rad).
+    static constexpr double kSigmaMinDeg = 0.0573, kSigmaMaxDeg = 85.94;
     static constexpr double kThetaMaxDefault = 89.9 * kPi / 180;
-    static constexpr double kThetaMaxMin = 60 * kPi / 180, kThetaMaxMax = 89.999 * kPi / 180;
+    static constexpr double kThetaMaxMinDeg = 60, kThetaMaxMaxDeg = 89.999;
     explicit GaussianAngles(double sigma, double theta_max = kThetaMaxDefault);
     double sigma() const { return sigma_; }
     double theta_max() const { return theta_max_; }

@@ -1,5 +1,6 @@
 #include "heightfield/ndf/generalized_normal.h"
 
+#include "core/check.h"
 #include "heightfield/ndf/ndf_family.h"
 
 #include <cmath>
@@ -9,8 +10,7 @@ namespace gonio {
 
 namespace {
 RadialProfile generalized_normal_profile(double p) {
-    if (!(p >= GeneralizedNormal::kPMin && p <= GeneralizedNormal::kPMax))
-        throw std::invalid_argument("generalized_normal: p must be in [0.5, 20]");
+    GONIO_DCHECK(p >= GeneralizedNormal::kPMin && p <= GeneralizedNormal::kPMax); // key p
     RadialProfile f;
     f.name = "generalized_normal";
     f.parameters = parameter_list({{"p", p}});

@@ -1,5 +1,6 @@
 #include "heightfield/ndf/generalized_t.h"
 
+#include "core/check.h"
 #include "heightfield/ndf/ndf_family.h"
 
 #include <cmath>
@@ -9,13 +10,9 @@ namespace gonio {
 
 namespace {
 RadialProfile generalized_t_profile(double p, double q) {
-    if (!(p >= GeneralizedT::kPMin && p <= GeneralizedT::kPMax))
-        throw std::invalid_argument("generalized_t: p must be in [0.5, 20]");
-    if (!(q > 0 && q <= GeneralizedT::kQMax))
-        throw std::invalid_argument("generalized_t: q must be in (0, 1e6]");
-    if (!(p * q >= 2))
-        throw std::invalid_argument("generalized_t: p q must be >= 2 (below 2, D diverges at the "
-                                    "horizon; at or below 1 Smith's Lambda is infinite)");
+    // The keys p and q, and p q >= 2, checked where they are read.
+    GONIO_DCHECK(p >= GeneralizedT::kPMin && p <= GeneralizedT::kPMax);
+    GONIO_DCHECK(q > 0 && q <= GeneralizedT::kQMax && p * q >= 2);
     RadialProfile f;
     f.name = "generalized_t";
     f.parameters = parameter_list({{"p", p}, {"q", q}});

@@ -1,5 +1,6 @@
 #include "heightfield/ndf/mixture_ndf.h"
 
+#include "core/check.h"
 #include "core/number_text.h"
 #include "heightfield/ndf/ndf_family.h"
 
@@ -29,19 +30,15 @@ size_t pick(const std::vector<double>& w, double total, double& u) {
 
 MixtureNdf::MixtureNdf(std::vector<std::unique_ptr<Ndf>> components, std::vector<double> weights)
     : components_(std::move(components)), weights_(std::move(weights)) {
-    if (components_.empty()) throw std::invalid_argument("mixture: needs at least one component");
-    if (weights_.size() != components_.size())
-        throw std::invalid_argument("mixture: needs one weight per component (" +
-                                    std::to_string(components_.size()) + ")");
+    // The keys components and weights, checked where they are read.
+    GONIO_DCHECK(!components_.empty() && weights_.size() == components_.size());
     double total = 0;
     for (double w : weights_) {
-        if (!(w > 0) || !std::isfinite(w))
-            throw std::invalid_argument("mixture: weights must be positive and finite");
+        GONIO_DCHECK(w > 0 && std::isfinite(w));
         total += w;
     }
     for (double& w : weights_) w /= total;
-    for (const auto& c : components_)
-        if (!c) throw std::invalid_argument("mixture: missing component");
+    for (const auto& c : components_) GONIO_CHECK(c);
 }
 
 double MixtureNdf::D(const Vec3& m) const {

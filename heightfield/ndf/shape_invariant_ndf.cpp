@@ -1,5 +1,6 @@
 #include "heightfield/ndf/shape_invariant_ndf.h"
 
+#include "core/check.h"
 #include "core/number_text.h"
 
 #include <cmath>
@@ -10,8 +11,7 @@
 namespace gonio {
 
 ShapeInvariantNdf::ShapeInvariantNdf(double alpha_x, double alpha_y) : ax_(alpha_x), ay_(alpha_y) {
-    if (!(alpha_x > 0) || !(alpha_y > 0) || !std::isfinite(alpha_x) || !std::isfinite(alpha_y))
-        throw std::invalid_argument("roughness alpha must be finite and > 0");
+    GONIO_DCHECK(alpha_x > 0 && alpha_y > 0 && std::isfinite(alpha_x) && std::isfinite(alpha_y));
 }
 
 double ShapeInvariantNdf::D(const Vec3& m) const {

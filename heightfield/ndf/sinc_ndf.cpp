@@ -1,5 +1,6 @@
 #include "heightfield/ndf/sinc_ndf.h"
 
+#include "core/check.h"
 #include "core/number_text.h"
 #include "heightfield/ndf/ndf_family.h"
 
@@ -10,10 +11,8 @@
 namespace gonio {
 
 ControlPoints SincNdf::curve(double k, double floor, int intervals) {
-    if (!(k > 0 && k <= 200)) throw std::invalid_argument("sinc: k must be in (0, 200] per radian");
-    if (!(floor >= 0 && floor <= 1)) throw std::invalid_argument("sinc: floor must be in [0, 1]");
-    if (intervals < 8 || intervals > 4096)
-        throw std::invalid_argument("sinc: points must be in [9, 4097]");
+    GONIO_DCHECK(k > 0 && k <= 200 && floor >= 0 && floor <= 1); // the keys k and floor
+    GONIO_DCHECK(intervals >= 8 && intervals <= 4096);           // the key points
     ControlPoints p;
     for (int i = 0; i <= intervals; ++i) {
         const double theta = 0.5 * kPi * i / intervals, x = k * theta;

@@ -1,5 +1,6 @@
 #include "heightfield/ndf/student_t.h"
 
+#include "core/check.h"
 #include "heightfield/ndf/ndf_family.h"
 
 #include <cmath>
@@ -9,10 +10,7 @@ namespace gonio {
 
 namespace {
 RadialProfile student_t_profile(double gamma) {
-    if (!(gamma >= StudentT::kGammaMin && gamma <= StudentT::kGammaMax))
-        throw std::invalid_argument(
-            "student_t: gamma must be in [2, 1e6] (below 2, D diverges at the horizon; at or below "
-            "1.5 Smith's Lambda is infinite)");
+    GONIO_DCHECK(gamma >= StudentT::kGammaMin && gamma <= StudentT::kGammaMax); // key gamma
     RadialProfile p;
     p.name = "student_t";
     p.parameters = parameter_list({{"gamma", gamma}});

@@ -1,5 +1,6 @@
 #include "heightfield/ndf/tabulated_ndf.h"
 
+#include "core/parallel.h"
 #include "core/quadrature.h"
 #include "core/random.h"
 #include "heightfield/exr_io.h"
@@ -15,7 +16,6 @@
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
-#include <tbb/parallel_for.h>
 
 namespace gonio {
 
@@ -160,7 +160,7 @@ TabulatedNdf::TabulatedNdf(NdfTable table, std::string source, std::string kind)
             }
     projected_.assign(size_t(it_ + 1) * ip_, 0.0);
     const GaussLegendre& gq = gauss_legendre(kNodes);
-    tbb::parallel_for(0, it_ + 1, [&](int i) {
+    parallel_for(0, it_ + 1, [&](int i) {
         const double to = 0.5 * kPi * i / it_, co = std::cos(to), so = std::sin(to);
         const double kink = 0.5 * kPi - to;
         std::vector<std::complex<double>> spectrum(size_t(h) + 1, 0.0);

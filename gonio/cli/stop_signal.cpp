@@ -1,4 +1,4 @@
-#include "gonio/distributed/stop_signal.h"
+#include "gonio/cli/stop_signal.h"
 
 #include <atomic>
 #include <csignal>

@@ -2,8 +2,8 @@
 // A run under `mpirun -np K`: MPI is started only when the process was launched by an MPI
 // launcher (Open MPI's or a PMI one), so the same binary runs alone without it. Ranks trace
 // their share of the work units and send them to rank 0, which puts the result together by the
-// one-process code path (gonio/cli/run_command.cpp).
-#include "gonio/distributed/unit_file.h"
+// one-process code path (gonio/run/mpi_executor.cpp).
+#include "gonio/run/unit.h"
 
 #include <vector>
 
@@ -20,8 +20,8 @@ void mpi_finish();
 [[noreturn]] void mpi_abort(int code);
 void mpi_barrier();
 // Ranks other than 0: every unit, then an end marker, to rank 0.
-void mpi_send_units(const std::vector<StoredUnit>& units);
+void mpi_send_units(const std::vector<NumberedUnit>& units);
 // Rank 0: the units of every other rank.
-std::vector<StoredUnit> mpi_receive_units();
+std::vector<NumberedUnit> mpi_receive_units();
 
 } // namespace gonio

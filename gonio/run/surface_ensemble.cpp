@@ -1,6 +1,7 @@
-#include "gonio/pipeline/surface_ensemble.h"
+#include "gonio/run/surface_ensemble.h"
 
 #include "core/batch_means.h"
+#include "core/check.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,8 +40,8 @@ void IncidenceEnsemble::add(TraceResult t) {
     s.variance.l1_cells = ray_variance(t.energy_batches, B, no, 0, 1);
     s.variance.linf_cells = ray_variance(t.energy_batches, B, no, 0, no);
     // Freed, not just cleared: an ensemble keeps hundreds of these (B times their means each).
-    for (auto v : {&t.energy_batches, &t.transmitted_batches, &t.energy_stderr,
-                   &t.transmitted_stderr})
+    for (auto v :
+         {&t.energy_batches, &t.transmitted_batches, &t.energy_stderr, &t.transmitted_stderr})
         std::vector<double>().swap(*v);
     t.ledger_batches = EnergyLedger{};
     t.ledger_stderr = EnergyLedger{};
@@ -55,7 +56,7 @@ long long IncidenceEnsemble::rays() const {
 }
 
 TraceResult IncidenceEnsemble::combined() const {
-    if (surfaces_.size() < 2) throw std::logic_error("an ensemble needs two surfaces or more");
+    GONIO_CHECK_MSG(surfaces_.size() >= 2, "an ensemble needs two surfaces or more");
     const int R = int(surfaces_.size());
     TraceResult c;
     const TraceResult& first = surfaces_[0].mean;

@@ -1,6 +1,7 @@
-#include "gonio/distributed/unit_file.h"
+#include "gonio/run/unit_file.h"
 
 #include "gonio/io/hdf5_handles.h"
+#include "gonio_version.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -9,7 +10,7 @@
 namespace gonio {
 
 namespace {
-constexpr const char* kFormat = "gonio-units 1";
+constexpr const char* kFormat = "gonio-units 2";
 
 void write_int(hid_t o, const char* name, long long v) {
     h5::write_int_attribute(o, name, v);
@@ -21,6 +22,20 @@ long long read_int(hid_t o, const char* name) {
     return v;
 }
 } // namespace
+
+UnitFileHeader run_identity(const Config& cfg, const std::string& command_line) {
+    UnitFileHeader h;
+    h.version = kVersion;
+    h.git_hash = kGitHash;
+    h.effective_toml = cfg.effective_toml;
+    h.config_path = cfg.path;
+    h.config_toml = cfg.text;
+    for (const auto& ov : cfg.overrides) h.overrides += ov + "\n";
+    h.command_line = command_line;
+    h.seed = (long long)cfg.seed;
+    h.units_total = UnitLayout(cfg).total();
+    return h;
+}
 
 std::string UnitFileHeader::differs_from(const UnitFileHeader& o) const {
     if (version != o.version || git_hash != o.git_hash)
@@ -71,9 +86,9 @@ void UnitFileWriter::close() {
     file_ = -1;
 }
 
-void UnitFileWriter::add(const StoredUnit& u) {
-    const std::vector<char> bytes = serialise(u.traces);
-    const std::string name = "unit_" + std::to_string(u.unit);
+void UnitFileWriter::add(const NumberedUnit& u) {
+    const std::vector<char> bytes = serialise(u.result);
+    const std::string name = "unit_" + std::to_string(u.number);
     const hsize_t n = bytes.size();
     h5::Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose, "dataspace");
     if (H5Lexists(hid_t(file_), name.c_str(), H5P_DEFAULT) > 0)
@@ -88,15 +103,15 @@ void UnitFileWriter::add(const StoredUnit& u) {
                  H5Dclose, ("create " + name).c_str());
     h5::check(H5Dwrite(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()),
               ("write " + name).c_str());
-    write_int(d, "unit", u.unit);
-    write_int(d, "case_index", (long long)u.case_index);
-    write_int(d, "theta_index", (long long)u.theta_index);
-    write_int(d, "phi_index", (long long)u.phi_index);
+    write_int(d, "unit", u.number);
+    write_int(d, "case_index", (long long)u.id.case_index);
+    write_int(d, "theta_index", (long long)u.id.theta_index);
+    write_int(d, "phi_index", (long long)u.id.phi_index);
     write_int(d, "complete", 1); // last: a unit cut short by a kill is skipped on reading
     h5::check(H5Fflush(hid_t(file_), H5F_SCOPE_GLOBAL), "flush");
 }
 
-std::vector<StoredUnit> read_unit_file(const std::string& path, UnitFileHeader* header) {
+std::vector<NumberedUnit> read_unit_file(const std::string& path, UnitFileHeader* header) {
     h5::silence_errors();
     if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
     if (H5Fis_hdf5(path.c_str()) <= 0) throw std::runtime_error(path + ": not an HDF5 file");
@@ -118,7 +133,7 @@ std::vector<StoredUnit> read_unit_file(const std::string& path, UnitFileHeader* 
     h.seed = read_int(f, "seed");
     h.units_total = read_int(f, "units_total");
     if (header) *header = h;
-    std::vector<StoredUnit> units;
+    std::vector<NumberedUnit> units;
     H5G_info_t info;
     h5::check(H5Gget_info(f, &info), "H5Gget_info");
     for (hsize_t k = 0; k < info.nlinks; ++k) {
@@ -136,15 +151,61 @@ std::vector<StoredUnit> read_unit_file(const std::string& path, UnitFileHeader* 
         std::vector<char> bytes(n);
         h5::check(H5Dread(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()),
                   ("read " + name).c_str());
-        StoredUnit u;
-        u.unit = read_int(d, "unit");
-        u.case_index = size_t(read_int(d, "case_index"));
-        u.theta_index = size_t(read_int(d, "theta_index"));
-        u.phi_index = size_t(read_int(d, "phi_index"));
-        u.traces = deserialise(bytes);
+        NumberedUnit u;
+        u.number = read_int(d, "unit");
+        u.id.case_index = size_t(read_int(d, "case_index"));
+        u.id.theta_index = size_t(read_int(d, "theta_index"));
+        u.id.phi_index = size_t(read_int(d, "phi_index"));
+        u.result = deserialise(bytes);
         units.push_back(std::move(u));
     }
     return units;
+}
+
+namespace {
+// What is wrong with a unit of case c, or "".
+std::string unit_problem(const UnitResult& u, const CaseConfig& c, bool batch_shard) {
+    const size_t cells = size_t(c.sensor_cells), nc = size_t(c.channels());
+    const size_t orders = size_t(c.trace.orders) + 1, map = orders * cells * nc;
+    const size_t surfaces = u.members.size();
+    if (c.surface.realisations == 1 ? surfaces != 1 : surfaces < 2)
+        return std::to_string(surfaces) + " traces for " + std::to_string(c.surface.realisations) +
+               " surface(s)";
+    for (const TraceResult& t : u.members) {
+        const size_t B = size_t(std::max(0, t.batches));
+        if (t.orders != int(orders) || t.cells != int(cells) || t.channels != int(nc))
+            return "a trace of another layout (orders, cells or channels)";
+        if (B < 1 || t.energy.size() != map || t.energy_batches.size() != B * map ||
+            t.ledger.reflected.size() != orders * nc ||
+            t.ledger_batches.reflected.size() != B * orders * nc)
+            return "a trace whose arrays do not fit its layout";
+    }
+    if (u.models.size() != c.model.models.size() && !(batch_shard && u.models.empty()))
+        return std::to_string(u.models.size()) + " models for the case's " +
+               std::to_string(c.model.models.size());
+    for (const ModelIncidence& m : u.models)
+        if (m.energy.size() != cells * nc ||
+            (m.monte_carlo() && m.energy_batches.size() != size_t(m.batches) * cells * nc))
+            return "a model whose arrays do not fit the case";
+    return "";
+}
+} // namespace
+
+void check_units(const std::vector<NumberedUnit>& units, const Config& cfg, const std::string& file,
+                 bool batch_shard) {
+    const UnitLayout layout(cfg);
+    for (const NumberedUnit& u : units) {
+        const std::string which = file + ": unit " + std::to_string(u.number);
+        const UnitId& id = u.id;
+        if (id.case_index >= cfg.cases.size() ||
+            id.theta_index >= cfg.cases[id.case_index].theta_i_deg.size() ||
+            id.phi_index >= cfg.cases[id.case_index].phi_i_deg.size() ||
+            layout.number(id) != u.number)
+            throw std::runtime_error(which + ": no such incidence in the run's config");
+        if (const std::string why = unit_problem(u.result, cfg.cases[id.case_index], batch_shard);
+            !why.empty())
+            throw std::runtime_error(which + ": " + why);
+    }
 }
 
 } // namespace gonio

@@ -1,10 +1,36 @@
-#include "gonio/distributed/work_units.h"
+#include "gonio/run/unit.h"
+
+#include "core/check.h"
 
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
 namespace gonio {
+
+UnitLayout::UnitLayout(const Config& cfg) {
+    long long u = 0;
+    for (const CaseConfig& c : cfg.cases) {
+        first_.push_back(u);
+        phi_count_.push_back(c.phi_i_deg.size());
+        u += (long long)(c.theta_i_deg.size() * c.phi_i_deg.size());
+    }
+    first_.push_back(u);
+}
+
+long long UnitLayout::number(const UnitId& u) const {
+    GONIO_DCHECK(u.case_index < cases() && u.phi_index < phi_count_[u.case_index]);
+    return first_[u.case_index] +
+           (long long)(u.theta_index * phi_count_[u.case_index] + u.phi_index);
+}
+
+UnitId UnitLayout::unit(long long number) const {
+    GONIO_CHECK(number >= 0 && number < total());
+    size_t c = 0;
+    while (number >= first_[c + 1]) ++c;
+    const size_t within = size_t(number - first_[c]);
+    return {c, within / phi_count_[c], within % phi_count_[c]};
+}
 
 Shard parse_shard(const std::string& text) {
     Shard s;
@@ -46,8 +72,8 @@ struct Writer {
 struct Reader {
     const std::vector<char>& in;
     size_t at = 0;
-    void need(size_t n) {
-        if (at + n > in.size()) throw std::runtime_error("a truncated unit message");
+    void need(std::uint64_t n) {
+        if (n > in.size() - at) throw std::runtime_error("a truncated unit message");
     }
     template <class T>
     void get(T& v) {
@@ -65,13 +91,13 @@ struct Reader {
     void get(std::vector<double>& v) {
         std::uint64_t n = 0;
         get(n);
-        need(n * sizeof(double));
+        need(n / sizeof(double) > in.size() ? in.size() + 1 : n * sizeof(double));
         v.resize(n);
         if (n > 0) std::memcpy(v.data(), in.data() + at, n * sizeof(double)); // (null when empty)
         at += n * sizeof(double);
     }
 };
-// Every field of a trace, in one order for both directions.
+// Every field of a trace and of a model's record, in one order for both directions.
 template <class IO, class Ledger>
 void ledger_fields(IO& io, Ledger& l) {
     io(l.reflected), io(l.transmitted), io(l.absorbed), io(l.capped), io(l.lost), io(l.unaccounted);
@@ -85,32 +111,45 @@ void trace_fields(IO& io, T& t) {
     ledger_fields(io, t.ledger_stderr);
     ledger_fields(io, t.ledger_batches);
 }
+template <class IO, class M>
+void model_fields(IO& io, M& m) {
+    io(m.energy), io(m.seconds), io(m.relative_tolerance), io(m.batches), io(m.energy_batches);
+    io(m.albedo_stderr), io(m.l1_energy), io(m.l1_albedo), io(m.l2_albedo), io(m.l2plus_albedo);
+}
+template <class IO, class U, class Count>
+void unit_fields(IO& io, U& u, Count& count) {
+    count(u.members);
+    for (auto& t : u.members) trace_fields(io, t);
+    io(u.stop), io(u.passes), io(u.error), io(u.surface);
+    count(u.models);
+    for (auto& m : u.models) model_fields(io, m);
+}
 } // namespace
 
-std::vector<char> serialise(const UnitTraces& u) {
+std::vector<char> serialise(const UnitResult& u) {
     Writer w;
     auto io = [&](const auto& v) { w.put(v); };
-    w.put(std::uint64_t(u.members.size()));
-    for (const TraceResult& t : u.members) trace_fields(io, t);
-    w.put(u.stop);
-    w.put(u.passes);
-    w.put(u.error);
-    w.put(u.surface);
+    auto count = [&](const auto& v) { w.put(std::uint64_t(v.size())); };
+    unit_fields(io, u, count);
     return std::move(w.out);
 }
 
-UnitTraces deserialise(const std::vector<char>& bytes) {
+UnitResult deserialise(const std::vector<char>& bytes) {
     Reader r{bytes};
     auto io = [&](auto& v) { r.get(v); };
-    UnitTraces u;
-    std::uint64_t n = 0;
-    r.get(n);
-    u.members.resize(n);
-    for (TraceResult& t : u.members) trace_fields(io, t);
-    r.get(u.stop);
-    r.get(u.passes);
-    r.get(u.error);
-    r.get(u.surface);
+    auto count = [&](auto& v) {
+        std::uint64_t n = 0;
+        r.get(n);
+        r.need(n); // every element takes a byte at least: a corrupt count fails here
+        v.resize(n);
+    };
+    UnitResult u;
+    unit_fields(io, u, count);
+    if (r.at != bytes.size()) throw std::runtime_error("a unit message with trailing bytes");
+    auto known = [](StopReason s) { return size_t(s) < enum_count<StopReason>(); };
+    bool valid = known(u.stop);
+    for (const TraceResult& t : u.members) valid = valid && known(t.stop);
+    if (!valid) throw std::runtime_error("a unit message with an unknown stop reason");
     return u;
 }
 

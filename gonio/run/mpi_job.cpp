@@ -1,4 +1,4 @@
-#include "gonio/distributed/mpi_job.h"
+#include "gonio/run/mpi_job.h"
 
 #include <cstdlib>
 #include <stdexcept>
@@ -64,12 +64,12 @@ namespace {
 constexpr int kHeader = 1, kBody = 2;
 } // namespace
 
-void mpi_send_units(const std::vector<StoredUnit>& units) {
-    for (const StoredUnit& u : units) {
-        const long long h[4] = {u.unit, (long long)u.case_index, (long long)u.theta_index,
-                                (long long)u.phi_index};
+void mpi_send_units(const std::vector<NumberedUnit>& units) {
+    for (const NumberedUnit& u : units) {
+        const long long h[4] = {u.number, (long long)u.id.case_index, (long long)u.id.theta_index,
+                                (long long)u.id.phi_index};
         MPI_Send(h, 4, MPI_LONG_LONG, 0, kHeader, MPI_COMM_WORLD);
-        const std::vector<char> bytes = serialise(u.traces);
+        const std::vector<char> bytes = serialise(u.result);
         if (bytes.size() >= (size_t(1) << 31)) throw std::runtime_error("a unit of 2 GB or more");
         MPI_Send(bytes.data(), int(bytes.size()), MPI_BYTE, 0, kBody, MPI_COMM_WORLD);
     }
@@ -77,8 +77,8 @@ void mpi_send_units(const std::vector<StoredUnit>& units) {
     MPI_Send(end, 4, MPI_LONG_LONG, 0, kHeader, MPI_COMM_WORLD);
 }
 
-std::vector<StoredUnit> mpi_receive_units() {
-    std::vector<StoredUnit> units;
+std::vector<NumberedUnit> mpi_receive_units() {
+    std::vector<NumberedUnit> units;
     for (int open = job.size - 1; open > 0;) {
         long long h[4];
         MPI_Status st;
@@ -94,13 +94,13 @@ std::vector<StoredUnit> mpi_receive_units() {
         std::vector<char> bytes(static_cast<size_t>(count));
         MPI_Recv(bytes.data(), count, MPI_BYTE, st.MPI_SOURCE, kBody, MPI_COMM_WORLD,
                  MPI_STATUS_IGNORE);
-        units.push_back({h[0], size_t(h[1]), size_t(h[2]), size_t(h[3]), deserialise(bytes)});
+        units.push_back({h[0], {size_t(h[1]), size_t(h[2]), size_t(h[3])}, deserialise(bytes)});
     }
     return units;
 }
 #else
-void mpi_send_units(const std::vector<StoredUnit>&) {}
-std::vector<StoredUnit> mpi_receive_units() {
+void mpi_send_units(const std::vector<NumberedUnit>&) {}
+std::vector<NumberedUnit> mpi_receive_units() {
     return {};
 }
 #endif

@@ -2,9 +2,10 @@
 // A file of finished work units: a shard's part (`gonio run --shard i/N`, put together by
 // `gonio merge`) or a running job's checkpoint (`gonio run --resume`). HDF5, format
 // "gonio-units 1": the run's identity in root attributes (gonio version and git hash, seed,
-// effective config, shard), one opaque dataset per unit holding its traces exactly
-// (work_units.h), with its case and incidence as attributes.
-#include "gonio/distributed/work_units.h"
+// effective config, shard), one opaque dataset per unit holding its result exactly (unit.h:
+// traces and models), with its number, case and incidence as attributes.
+#include "gonio/config/config.h"
+#include "gonio/run/unit.h"
 
 #include <string>
 #include <vector>
@@ -21,11 +22,8 @@ struct UnitFileHeader {
     std::string differs_from(const UnitFileHeader& other) const;
 };
 
-struct StoredUnit {
-    long long unit = 0;
-    size_t case_index = 0, theta_index = 0, phi_index = 0;
-    UnitTraces traces;
-};
+// The identity of a run of `cfg` (every unit of the config; shard "0/1").
+UnitFileHeader run_identity(const Config& cfg, const std::string& command_line);
 
 class UnitFileWriter {
   public:
@@ -35,7 +33,7 @@ class UnitFileWriter {
     UnitFileWriter(const UnitFileWriter&) = delete;
     UnitFileWriter& operator=(const UnitFileWriter&) = delete;
     // Adds a unit and flushes the file, so that it survives a kill.
-    void add(const StoredUnit& u);
+    void add(const NumberedUnit& u);
     void close();
 
   private:
@@ -44,6 +42,13 @@ class UnitFileWriter {
 };
 
 // Throws std::runtime_error naming the file if it is not a unit file.
-std::vector<StoredUnit> read_unit_file(const std::string& path, UnitFileHeader* header);
+std::vector<NumberedUnit> read_unit_file(const std::string& path, UnitFileHeader* header);
+
+// Checks that every unit read from `file` belongs to a run of `cfg`: its place and number, its
+// traces' layout (orders, cells, channels, batches, one per surface) and its models'. Throws
+// std::runtime_error naming the file and the unit. `batch_shard`: a shard of a single-incidence
+// job's batches (its models may be absent).
+void check_units(const std::vector<NumberedUnit>& units, const Config& cfg, const std::string& file,
+                 bool batch_shard = false);
 
 } // namespace gonio

@@ -1,0 +1,43 @@
+#include "gonio/cli/cli_common.h"
+
+#include <filesystem>
+
+namespace gonio {
+
+void add_common_options(CLI::App& app, CommonOptions& o, unsigned which) {
+    if (which & kConfig) app.add_option("config", o.config, "TOML config file")->required();
+    if (which & kSet)
+        app.add_option("--set", o.overrides,
+                       "Override a config key, e.g. --set ndf.alpha=0.3 or "
+                       "--set case.1.beam.theta_i=[0,60] (repeatable)");
+    if (which & kOverwrite)
+        app.add_flag("--overwrite", o.overwrite, "Replace existing output files");
+    if (which & kQuiet) app.add_flag("-q,--quiet", o.quiet, "No progress and no table");
+    if (which & kThreads)
+        app.add_option("--threads", o.threads, "Worker threads (default: all cores)")
+            ->check(CLI::Range(0, 1024));
+    if (which & kCache)
+        app.add_flag("--no-cache", o.no_cache, "Neither read nor write the surface cache");
+    if (which & (kCache | kCacheDir))
+        app.add_option("--cache-dir", o.cache_dir,
+                       "Surface cache directory (default: $GONIO_CACHE_DIR, else "
+                       "~/.cache/gonio/surfaces)");
+}
+
+SurfaceCache surface_cache(const CommonOptions& o) {
+    if (o.no_cache) return SurfaceCache(std::string());
+    cache_size_limit(); // a bad GONIO_CACHE_MAX fails now, not after a surface was made
+    return SurfaceCache(o.cache_dir.empty() ? default_cache_directory() : o.cache_dir);
+}
+
+std::string output_or_default(const std::string& output, const std::string& config,
+                              const std::string& extension) {
+    return output.empty() ? std::filesystem::path(config).stem().string() + extension : output;
+}
+
+void refuse_existing(const std::string& path, bool overwrite) {
+    if (!overwrite && std::filesystem::exists(path))
+        throw UsageError(path + ": exists; pass --overwrite to replace it");
+}
+
+} // namespace gonio

@@ -1,0 +1,26 @@
+#pragma once
+// The terminal's view of a run (gonio run, gonio merge): a progress line while units are
+// computed, then one row per channel of every incidence as it is put into the result: simulated
+// L1 with its error, the first model of single scattering beside it (every model is in the
+// file), L2+, the transmitted and lost parts.
+#include "gonio/cli/progress.h"
+#include "gonio/config/config.h"
+#include "gonio/run/run_context.h"
+
+namespace gonio {
+
+class RunTable {
+  public:
+    // Prints the header unless quiet; `units`: how many the progress line counts to.
+    RunTable(long long units, bool quiet);
+    RunObserver observer();
+    void finish() { progress_.finish(); }
+
+  private:
+    void print(const IncidenceReport& r);
+    bool quiet_;
+    Progress progress_;
+    long long done_ = 0;
+};
+
+} // namespace gonio

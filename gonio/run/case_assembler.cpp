@@ -1,0 +1,90 @@
+#include "gonio/run/case_assembler.h"
+
+#include "core/check.h"
+#include "gonio/model/model_comparison.h"
+#include "gonio/run/surface_ensemble.h"
+
+namespace gonio {
+
+CaseAssembler::CaseAssembler(const CaseConfig& c, bool simulated) : c_(c), simulated_(simulated) {
+    result_.sensor = std::make_unique<BeckersSensor>(c.sensor_cells);
+    for (int k = 0; k < result_.sensor->cell_count(); ++k)
+        projected_solid_angle_.push_back(result_.sensor->cell(k).projected_solid_angle);
+    result_.phases.add(Phase::ndf, c.ndf_seconds);
+    const size_t nt = c.theta_i_deg.size(), np = c.phi_i_deg.size();
+    expected_ = nt * np;
+    added_at_.assign(expected_, false);
+    if (simulated)
+        result_.simulation = SimulationResult(c.theta_i_deg, c.phi_i_deg, *result_.sensor);
+    for (const ModelChoice& m : c.model.models) {
+        ModelResult& r = result_.models.emplace_back();
+        r.name = m.name;
+        r.compared_with = m.compared_with;
+        r.description = m.description;
+    }
+}
+
+bool CaseAssembler::has(size_t t, size_t p) const {
+    return added_at_[t * c_.phi_i_deg.size() + p];
+}
+
+void CaseAssembler::add(const UnitId& id, UnitResult&& u, const RunObserver& observer) {
+    ScopedPhase timer(result_.phases, Phase::compare);
+    const size_t t = id.theta_index, p = id.phi_index, at = t * c_.phi_i_deg.size() + p;
+    GONIO_CHECK(t < c_.theta_i_deg.size() && p < c_.phi_i_deg.size() && !added_at_[at]);
+    GONIO_CHECK(u.models.size() == result_.models.size());
+    GONIO_CHECK(u.members.empty() != simulated_);
+    const std::vector<double>& psa = projected_solid_angle_;
+    if (added_ == 0)
+        for (size_t k = 0; k < u.models.size(); ++k)
+            result_.models[k].allocate(c_.theta_i_deg.size(), c_.phi_i_deg.size(), psa.size(),
+                                       size_t(c_.channels()), u.models[k].monte_carlo());
+    for (size_t k = 0; k < u.models.size(); ++k) result_.models[k].put(t, p, u.models[k], psa);
+    if (surface_from_ < 0 || (long long)at < surface_from_)
+        surface_from_ = at, surface_ = u.surface;
+
+    TraceResult all;
+    std::vector<Comparison> comparisons;
+    if (simulated_) {
+        SurfaceShares shares;
+        int surfaces = 1;
+        const bool ensemble = c_.surface.realisations > 1;
+        if (ensemble) { // the surfaces are the batches of the ensemble's trace
+            IncidenceEnsemble e;
+            for (TraceResult& m : u.members) e.add(std::move(m));
+            all = e.combined();
+            all.stop = u.stop, all.rounds = u.passes;
+            all.achieved_error = c_.trace.target.active() ? u.error : -1;
+            shares = e.shares(all, *result_.sensor);
+            surfaces = e.realisations();
+        } else {
+            all = std::move(u.members.at(0));
+        }
+        most_surfaces_ = std::max(most_surfaces_, surfaces);
+        for (size_t k = 0; k < u.models.size(); ++k)
+            comparisons.push_back(compare_model(all, result_.models[k].compared_with, u.models[k]));
+        result_.simulation.put(t, p, all, comparisons, ensemble ? &shares : nullptr, surfaces);
+    }
+    added_at_[at] = true;
+    ++added_;
+    timer.stop();
+    if (observer.incidence)
+        observer.incidence({&c_, id, c_.theta_i_deg[t], c_.phi_i_deg[p],
+                            simulated_ ? &all : nullptr, simulated_ ? &result_.simulation : nullptr,
+                            simulated_ ? &comparisons : nullptr, &u.models});
+}
+
+CaseResult CaseAssembler::finish() {
+    GONIO_CHECK_MSG(complete(), "case " + c_.name + ": " + std::to_string(expected_ - added_) +
+                                    " incidences missing");
+    SimulationResult& sim = result_.simulation;
+    if (simulated_)
+        sim.surface = c_.surface.realisations == 1
+                          ? surface_
+                          : "an ensemble of " + std::to_string(most_surfaces_) +
+                                " surfaces, the first " +
+                                (surface_.empty() ? std::string("not cached") : surface_);
+    return std::move(result_);
+}
+
+} // namespace gonio

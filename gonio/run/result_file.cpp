@@ -1,0 +1,40 @@
+// write_result (run.h): a run's result as the HDF5 result file (gonio/io/result_writer.h).
+#include "gonio/io/result_writer.h"
+#include "gonio/run/run.h"
+
+namespace gonio {
+
+void write_result(const RunResult& r, ResultWriter& writer) {
+    auto t = PhaseTimes::Clock::now();
+    PhaseTimes run = r.phases;
+    writer.write_run(r.config, r.command_line);
+    writer.write_execution(r.execution.ranks, r.execution.threads_per_rank,
+                           r.execution.merged_parts);
+    t = run.add_since(Phase::writing, t);
+    for (size_t ci = 0; ci < r.cases.size(); ++ci) {
+        const CaseConfig& c = r.config.cases[ci];
+        const CaseResult& cr = r.cases[ci];
+        if (r.simulated)
+            writer.write_simulation_case(c, *cr.sensor, c.ndf->describe(), cr.simulation,
+                                         cr.models);
+        else
+            writer.write_model_case(c, *cr.sensor, c.ndf->describe(), cr.models);
+        PhaseTimes phases = cr.phases;
+        phases.add_since(Phase::writing, t);
+        writer.write_timings(c.name, phases.phases());
+        run.merge(phases);
+        t = PhaseTimes::Clock::now();
+    }
+    run.add_since(Phase::writing, t);
+    run.add(Phase::wall,
+            std::chrono::duration<double>(PhaseTimes::Clock::now() - r.started).count());
+    writer.write_timings("", run.phases());
+    writer.commit();
+}
+
+void write_result_file(const RunResult& r, const std::string& path, bool overwrite) {
+    ResultWriter writer(path, overwrite);
+    write_result(r, writer);
+}
+
+} // namespace gonio
