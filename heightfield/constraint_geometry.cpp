@@ -1,13 +1,15 @@
 #include "heightfield/constraint_geometry.h"
 
+#include "core/check.h"
+
 #include <cmath>
 #include <stdexcept>
 
 namespace gonio {
 
 HeightField constraint_geometry(Constraint kind, int n, int lattice, double relief) {
-    if (kind == Constraint::none) throw std::invalid_argument("constraint must be domes or holes");
-    if (lattice < 1 || lattice > n / 2) throw std::invalid_argument("lattice must be in [1, n/2]");
+    // surface.constraint and surface.lattice, checked where [surface] is read.
+    GONIO_CHECK(kind != Constraint::none && lattice >= 1 && lattice <= n / 2);
     HeightField s(n, 1.0);
     const double period = double(n) / lattice, radius = 0.4 * period;
     const double sign = kind == Constraint::domes ? 1.0 : -1.0;

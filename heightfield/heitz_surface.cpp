@@ -1,5 +1,6 @@
 #include "heightfield/heitz_surface.h"
 
+#include "core/check.h"
 #include "core/random.h"
 #include "heightfield/frankot_chellappa.h"
 #include "heightfield/ndf/ndf.h"
@@ -14,9 +15,8 @@ namespace gonio {
 
 HeightField heitz_surface(int n, double alpha_x, double alpha_y, double correlation_length,
                           std::uint64_t seed) {
-    if (n < 2 || !(correlation_length > 0) || !(alpha_x > 0) || !(alpha_y > 0))
-        throw std::invalid_argument(
-            "heitz_surface: needs n >= 2, alpha > 0, correlation length > 0");
+    // surface.size, ndf.alpha and surface.correlation_length, checked where they are read.
+    GONIO_CHECK(n >= 2 && correlation_length > 0 && alpha_x > 0 && alpha_y > 0);
     const int w = n / 2 + 1;
     fftwf_complex* spec = fftwf_alloc_complex(size_t(n) * w);
     float* real = fftwf_alloc_real(size_t(n) * n);
@@ -84,8 +84,8 @@ const SurfaceGenerator& heitz_generator() {
         },
         [](const Ndf& ndf, const SurfaceSpec& s, int, GenerationLog*, const ProgressFn&) {
             double ax, ay;
-            if (!ndf.gaussian_slopes(ax, ay))
-                throw std::invalid_argument("the heitz generator makes Beckmann surfaces only");
+            const bool gaussian = ndf.gaussian_slopes(ax, ay);
+            GONIO_CHECK_MSG(gaussian, "heitz: refused where [surface] is read"); // Beckmann only
             return heitz_surface(s.size, ax, ay, s.correlation_length, s.seed);
         },
         [](const SurfaceSpec& s, std::ostream& o) {

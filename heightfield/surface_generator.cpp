@@ -1,5 +1,8 @@
 #include "heightfield/surface_generator.h"
 
+#include "core/check.h"
+#include "core/registry.h"
+
 #include <chrono>
 #include <stdexcept>
 
@@ -16,12 +19,7 @@ const SurfaceGenerator* default_generator() {
 }
 
 const SurfaceGenerator& generator_named(const std::string& name) {
-    std::string names;
-    for (const SurfaceGenerator* g : surface_generators()) {
-        if (name == g->name) return *g;
-        names += (names.empty() ? "" : ", ") + std::string(g->name);
-    }
-    throw std::invalid_argument("unknown generator '" + name + "' (allowed: " + names + ")");
+    return find_named(surface_generators(), name, "generator");
 }
 
 const char* generator_name(const SurfaceSpec& spec) {
@@ -31,7 +29,7 @@ const char* generator_name(const SurfaceSpec& spec) {
 HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int threads,
                              GenerationLog* log, const ProgressFn& progress) {
     const auto start = std::chrono::steady_clock::now();
-    if (!spec.generator) throw std::invalid_argument("a measured map is loaded, not generated");
+    GONIO_CHECK_MSG(spec.generator, "a measured map is loaded, not generated");
     GenerationLog local;
     GenerationLog* lg = log ? log : &local;
     *lg = GenerationLog{};

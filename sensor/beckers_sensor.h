@@ -40,6 +40,12 @@ class BeckersSensor {
     int ring_first_cell(int ring) const { return ring_first_[ring]; }
     int ring_cell_count(int ring) const { return ring_first_[ring + 1] - ring_first_[ring]; }
     const SensorCell& cell(int c) const { return cells_[c]; }
+    // Every cell's projected solid angle, in cell order.
+    std::vector<double> projected_solid_angles() const {
+        std::vector<double> a;
+        for (const SensorCell& c : cells_) a.push_back(c.projected_solid_angle);
+        return a;
+    }
     const std::vector<SensorCell>& cells() const { return cells_; }
 
     // Cell of a direction of the upper hemisphere (d.z >= 0; need not be exactly unit length in
@@ -64,5 +70,16 @@ class BeckersSensor {
     std::vector<double> ring_scale_;  // per ring: cells / (2 pi)
     std::vector<double> boundary_;    // per cell: cos and sin of phi_min
 };
+
+// Cell energies stored [...][cell][channel] over each cell's projected solid angle: the cells'
+// average BRDF, in 1/sr (the same for a cell of the upper sensor and its mirror image).
+inline std::vector<double> cell_brdf(std::vector<double> energy,
+                                     const std::vector<double>& projected_solid_angle,
+                                     size_t channels) {
+    const size_t cells = projected_solid_angle.size();
+    for (size_t k = 0; k < energy.size(); ++k)
+        energy[k] /= projected_solid_angle[(k / channels) % cells];
+    return energy;
+}
 
 } // namespace gonio

@@ -96,7 +96,7 @@ TEST_CASE("IL model: reciprocal, and single scattering never creates energy (M18
     const BeckersSensor sensor(577);
     for (const auto& [ndf, form] : cases) {
         CAPTURE(ndf->describe());
-        CAPTURE(masking_name(form));
+        CAPTURE(name_of(form));
         const InterfacedLambertianModel model(*ndf, {1.5}, {1.0}, form);
         for (auto [ti, to, dphi] :
              {std::tuple{10.0, 50.0, 30.0}, {75.0, 40.0, 160.0}, {85.0, 85.0, 0.0}}) {

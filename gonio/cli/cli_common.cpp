@@ -1,5 +1,7 @@
 #include "gonio/cli/cli_common.h"
 
+#include "gonio/cli/stop_signal.h"
+
 #include <filesystem>
 
 namespace gonio {
@@ -28,6 +30,18 @@ SurfaceCache surface_cache(const CommonOptions& o) {
     if (o.no_cache) return SurfaceCache(std::string());
     cache_size_limit(); // a bad GONIO_CACHE_MAX fails now, not after a surface was made
     return SurfaceCache(o.cache_dir.empty() ? default_cache_directory() : o.cache_dir);
+}
+
+RunOptions run_options(const CommonOptions& c, const CliContext& context,
+                       PhaseTimes::Clock::time_point start) {
+    RunOptions o;
+    o.threads = c.threads;
+    o.cache = surface_cache(c);
+    o.stop_requested = [] { return stop_requested(); };
+    o.command_line = context.command_line;
+    o.started = start;
+    o.config_seconds = std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count();
+    return o;
 }
 
 std::string output_or_default(const std::string& output, const std::string& config,

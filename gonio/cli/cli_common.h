@@ -2,6 +2,8 @@
 // What the subcommands share: their registration (command.h), the options most of them take
 // (declared once here), and the errors that end a command with a usage exit code.
 #include "core/threads.h"
+#include "gonio/cli/command.h"
+#include "gonio/run/run.h"
 #include "heightfield/surface_cache.h"
 
 #include <CLI/CLI.hpp>
@@ -19,7 +21,7 @@ struct UsageError : std::runtime_error {
 // The options shared by the commands; each command asks for the ones it takes.
 struct CommonOptions {
     std::string config;                 // kConfig: the TOML config file
-    std::string output;                 // kOutput: -o (its text is the command's)
+    std::string output;                 // -o (each command declares it, in its own words)
     std::vector<std::string> overrides; // kSet: --set key=value
     bool overwrite = false;             // kOverwrite
     bool quiet = false;                 // kQuiet
@@ -40,6 +42,11 @@ void add_common_options(CLI::App& app, CommonOptions& o, unsigned which);
 
 // The surface cache the options name (--no-cache: none); a bad GONIO_CACHE_MAX fails now.
 SurfaceCache surface_cache(const CommonOptions& o);
+
+// The library's run options from the command line's: threads, cache, SIGINT as the stop, the
+// command line as provenance, and the wall time from `start` (the config read since then).
+RunOptions run_options(const CommonOptions& o, const CliContext& context,
+                       PhaseTimes::Clock::time_point start);
 
 // <stem of the config>.<extension> in the working directory, unless `output` is given.
 std::string output_or_default(const std::string& output, const std::string& config,

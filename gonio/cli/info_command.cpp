@@ -1,5 +1,6 @@
 #include "gonio/cli/command.h"
 #include "gonio/io/result_reader.h"
+#include "gonio/io/simulation_result.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -12,8 +13,7 @@ namespace {
 
 // What a case's standard errors include.
 std::string scope_text(const CaseSummary& c) {
-    const std::string scope = c.attributes.at("error_scope");
-    if (scope == "rays+surface") {
+    if (enum_named<ErrorScope>(c.attributes.at("error_scope")) == ErrorScope::rays_and_surface) {
         double most = 0;
         if (auto r = c.runs.find("realisations"); r != c.runs.end())
             for (double v : r->second) most = std::max(most, v);

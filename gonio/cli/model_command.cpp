@@ -26,13 +26,7 @@ int model(const CommonOptions& a, const CliContext& context) {
     refuse_existing(output, a.overwrite);
     ResultWriter writer(output, true); // an unwritable output fails here, before any work
     install_stop_handlers();
-    RunOptions o;
-    o.threads = a.threads;
-    o.cache = surface_cache(a); // the P-BRDF's surface
-    o.stop_requested = [] { return stop_requested(); };
-    o.command_line = context.command_line;
-    o.started = start;
-    o.config_seconds = std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count();
+    RunOptions o = run_options(a, context, start); // its cache: the P-BRDF's surface
     Progress progress(UnitLayout(cfg).total(), a.quiet);
     long long done = 0;
     if (!a.quiet)

@@ -23,18 +23,6 @@ struct RunArgs {
     bool resume = false; // continue from OUT.checkpoint
 };
 
-RunOptions run_options(const RunArgs& a, const CliContext& context,
-                       PhaseTimes::Clock::time_point start) {
-    RunOptions o;
-    o.threads = a.common.threads;
-    o.cache = surface_cache(a.common);
-    o.stop_requested = [] { return stop_requested(); };
-    o.command_line = context.command_line;
-    o.started = start;
-    o.config_seconds = std::chrono::duration<double>(PhaseTimes::Clock::now() - start).count();
-    return o;
-}
-
 // Every unit here, kept in OUT.checkpoint as it finishes; the checkpoint goes once the result is
 // written.
 int run_here(const Config& cfg, RunOptions o, const RunArgs& a, const std::string& output) {
@@ -46,7 +34,7 @@ int run_here(const Config& cfg, RunOptions o, const RunArgs& a, const std::strin
                                       "continue it or --overwrite to start again");
     refuse_existing(output, a.common.overwrite);
     ResultWriter writer(output, true); // an unwritable output fails here, before any work
-    RunTable table(UnitLayout(cfg).total(), a.common.quiet);
+    RunTable table(UnitLayout(cfg).total(), a.common.quiet, checkpoint);
     o.observer = table.observer();
     RunResult result;
     try {
@@ -141,7 +129,7 @@ int run(const RunArgs& a, const CliContext& context) {
     const auto limit = limit_threads(a.common.threads);
     const std::string output = output_or_default(a.common.output, a.common.config, ".h5");
     install_stop_handlers();
-    const RunOptions o = run_options(a, context, start);
+    const RunOptions o = run_options(a.common, context, start);
     if (context.ranks > 1) return run_on_ranks(cfg, o, a, context, output);
     const Shard shard = shard_of(a.shard);
     if (shard.active()) return run_as_shard(cfg, o, a, shard, output);

@@ -4,7 +4,8 @@
 
 namespace gonio {
 
-RunTable::RunTable(long long units, bool quiet) : quiet_(quiet), progress_(units, quiet) {
+RunTable::RunTable(long long units, bool quiet, std::string checkpoint)
+    : quiet_(quiet), checkpoint_(std::move(checkpoint)), progress_(units, quiet) {
     if (!quiet)
         std::printf("%-20s %7s %7s %10s %8s %10s %10s %7s %10s %10s %9s\n", "case", "theta_i",
                     "phi_i", "L1", "+-", "model", "rel_diff", "sigmas", "L2+", "T", "lost");
@@ -19,9 +20,13 @@ RunObserver RunTable::observer() {
         progress_.finish();
         print(r);
     };
-    o.warn = [](const std::string& w) { std::fprintf(stderr, "gonio: warning: %s\n", w.c_str()); };
+    o.warn = [this](const std::string& w) {
+        if (!quiet_) std::fprintf(stderr, "gonio: warning: %s\n", w.c_str());
+    };
     o.resumed = [this](long long done, long long total) {
-        if (!quiet_) std::printf("resuming: %lld of %lld incidences done\n", done, total);
+        if (!quiet_)
+            std::printf("resuming %s: %lld of %lld incidences done\n", checkpoint_.c_str(), done,
+                        total);
     };
     return o;
 }

@@ -11,14 +11,16 @@ namespace gonio {
 
 class RunTable {
   public:
-    // Prints the header unless quiet; `units`: how many the progress line counts to.
-    RunTable(long long units, bool quiet);
+    // Prints the header unless quiet; `units`: how many the progress line counts to;
+    // `checkpoint`: what a resumed run continues.
+    RunTable(long long units, bool quiet, std::string checkpoint = "");
     RunObserver observer();
     void finish() { progress_.finish(); }
 
   private:
     void print(const IncidenceReport& r);
     bool quiet_;
+    std::string checkpoint_;
     Progress progress_;
     long long done_ = 0;
 };

@@ -101,7 +101,7 @@ int surface(const CommonOptions& o) {
         const std::string out = output_for(o, cfg, c);
         ExrAttributes attrs = surface_attributes(*ndf, c.surface, origin.log);
         if (origin.loaded) {
-            attrs.text["gonio_generator"] = "input";
+            attrs.text["gonio_generator"] = generator_name(c.surface);
             attrs.text["gonio_input"] = c.surface.input;
             attrs.text["gonio_edges"] = origin.edges;
         }

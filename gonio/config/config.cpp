@@ -1,6 +1,7 @@
 #include "gonio/config/config.h"
 
 #include "core/config_error.h"
+#include "core/float_mode.h"
 #include "core/table_reader.h"
 #include "gonio/config/overrides.h"
 #include "heightfield/ndf/ndf_family.h"
@@ -312,6 +313,7 @@ std::string keys_text() {
 
 Config parse_config(const std::string& text, const std::string& path,
                     const std::vector<std::string>& overrides) {
+    const ResultFloatMode mode; // the distributions' tables are computed here
     toml::table root;
     try {
         root = toml::parse(text, path);

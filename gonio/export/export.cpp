@@ -1,5 +1,6 @@
 #include "gonio/export/export.h"
 
+#include "core/registry.h"
 #include "gonio/export/atomic_output.h"
 #include "gonio/export/export_formats.h"
 
@@ -15,12 +16,7 @@ const std::vector<const ExportFormat*>& export_formats() {
 }
 
 const ExportFormat& export_format_named(const std::string& name) {
-    std::string names;
-    for (const ExportFormat* f : export_formats()) {
-        if (name == f->name) return *f;
-        names += (names.empty() ? "" : ", ") + std::string(f->name);
-    }
-    throw std::invalid_argument("unknown format '" + name + "' (" + names + ")");
+    return find_named(export_formats(), name, "format");
 }
 
 TableOrder requested_order(const ExportOptions& o, bool transmission_allowed) {

@@ -27,10 +27,8 @@ void ModelResult::put(size_t t, size_t p, const ModelIncidence& m,
     const size_t nc = albedo.extent("channel"), ncell = projected_solid_angle.size();
     GONIO_CHECK(m.energy.size() == ncell * nc);
     GONIO_CHECK(m.monte_carlo() == !l1.empty());
-    // Energy over the cell's projected solid angle, [cell][channel].
     auto brdf_of = [&](std::vector<double> v) {
-        for (size_t k = 0; k < v.size(); ++k) v[k] /= projected_solid_angle[(k / nc) % ncell];
-        return v;
+        return cell_brdf(std::move(v), projected_solid_angle, nc);
     };
     if (m.monte_carlo()) {
         l1.put({t, p}, brdf_of(m.l1_energy));

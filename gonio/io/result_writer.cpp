@@ -153,7 +153,7 @@ ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const Becke
     h5::write_string_attribute(group, "material", c.material.type);
     h5::write_string_attribute(group, "fresnel", c.material.description);
     h5::write_string_attribute(group, "material_source", c.material.source);
-    h5::write_string_attribute(group, "masking", masking_name(c.model.masking));
+    h5::write_string_attribute(group, "masking", name_of(c.model.masking));
     h5::write_string_attribute(group, "trace_backend", c.trace.backend->name);
     h5::write_int_attribute(group, "quadrature_points", c.model.quadrature.points);
     h5::write_double_attribute(group, "quadrature_tolerance", c.model.quadrature.rel_tol);

@@ -29,8 +29,7 @@ std::vector<double> orders_stderr(const std::vector<double>& batches, int B, int
 SimulationResult::SimulationResult(std::vector<double> theta_i_deg, std::vector<double> phi_i_deg,
                                    const BeckersSensor& sensor)
     : theta_i_deg_(std::move(theta_i_deg)), phi_i_deg_(std::move(phi_i_deg)) {
-    for (int k = 0; k < sensor.cell_count(); ++k)
-        projected_solid_angle_.push_back(sensor.cell(k).projected_solid_angle);
+    projected_solid_angle_ = sensor.projected_solid_angles();
 }
 
 void SimulationResult::allocate(const TraceResult& r, size_t models, bool ensemble) {
@@ -110,12 +109,10 @@ void SimulationResult::put(size_t t, size_t p, const TraceResult& r,
     GONIO_CHECK(t < theta_i_deg_.size() && p < phi_i_deg_.size() && !filled_[index(t, p)]);
     GONIO_CHECK_MSG(r.orders == orders_ && models.size() == comparisons.size(),
                     "an incidence of another layout");
-    const size_t nc = size_t(r.channels), ncell = size_t(r.cells);
+    const size_t nc = size_t(r.channels);
     const int B = r.batches, no = r.orders;
-    // Energy over the cell's projected solid angle: the same for a cell and its mirror image.
     auto brdf_of = [&](std::vector<double> v) {
-        for (size_t k = 0; k < v.size(); ++k) v[k] /= projected_solid_angle_[(k / nc) % ncell];
-        return v;
+        return cell_brdf(std::move(v), projected_solid_angle_, nc);
     };
     auto side = [&](SimulatedSide& s, const std::vector<double>& energy,
                     const std::vector<double>& energy_stderr, const std::vector<double>& batches,

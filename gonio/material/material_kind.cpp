@@ -5,10 +5,10 @@
 namespace gonio {
 
 namespace {
-const Key kWavelengths =
-    Key::numbers("wavelengths", {200, 20000}, "one channel each, for spectral materials")
-        .in_unit("nm")
-        .fallback(std::vector<double>{650, 550, 450});
+const Key kWavelengths = Key::numbers("wavelengths", {200, 20000},
+                                      "one channel each, for spectral materials (at most 64)")
+                             .in_unit("nm")
+                             .fallback(std::vector<double>{650, 550, 450});
 
 const Key& type_key() {
     static const Key key = [] {

@@ -181,10 +181,17 @@ void AshikhminModel::eval_cosine(const Vec3& i, const Vec3& o, double* out) cons
 } // namespace gonio
 
 namespace gonio {
+// The normals' density of the generated BRDF.
+enum class AshikhminDensity { ndf, satin, velvet };
+template <>
+struct EnumNames<AshikhminDensity> {
+    static constexpr const char* what = "distribution";
+    static constexpr const char* names[] = {"ndf", "satin", "velvet"};
+};
 namespace {
 const Key kTable = Key::table("ashikhmin", "ashikhmin: its settings (the `model.ashikhmin` keys)")
                        .note_default("{}");
-const Key kDistribution = Key::string("distribution", {"ndf", "satin", "velvet"},
+const Key kDistribution = Key::string("distribution", enum_names<AshikhminDensity>(),
                                       "the normals' density: the case's NDF, satin [A00 section "
                                       "6.3] or velvet [A00 Eq. 35]")
                               .fallback("ndf");
@@ -195,8 +202,7 @@ const Key kCorrelation = Key::number("correlation_width", {0, 90},
                                      "Eq. 14")
                              .in_unit("degrees")
                              .fallback(0.0);
-const char* const kDiffuseNames[] = {"none", "dielectric", "metal"};
-const Key kDiffuse = Key::string("diffuse", {"none", "dielectric", "metal"},
+const Key kDiffuse = Key::string("diffuse", enum_names<AshikhminDiffuse>(),
                                  "the diffuse term [A00 Eq. 28-30] or its metal variant [A00 "
                                  "section 5.1]")
                          .fallback("none");
@@ -226,20 +232,16 @@ const ModelKind& ashikhmin_model_kind() {
                 r.fail("models", "\"ashikhmin\" is a specular model; for " + c.facets.type +
                                      " facets use \"il\" (and \"vcavity\")");
             AshikhminSettings s;
-            enum class Density { ndf, satin, velvet } which = Density::ndf;
+            using Density = AshikhminDensity;
+            Density which = Density::ndf;
             double sigma = 0.5;
             if (r.has(kTable.name)) {
                 TableReader a = r.table(kTable);
                 a.allow_only({&kSubKeys});
-                const std::string distribution = a.string(kDistribution);
-                which = distribution == "satin"    ? Density::satin
-                        : distribution == "velvet" ? Density::velvet
-                                                   : Density::ndf;
+                which = enum_named<Density>(a.string(kDistribution));
                 sigma = a.number(kSigma);
                 s.correlation_width = radians(a.number(kCorrelation));
-                const std::string diffuse = a.string(kDiffuse);
-                for (int d = 0; d < 3; ++d)
-                    if (diffuse == kDiffuseNames[d]) s.diffuse = AshikhminDiffuse(d);
+                s.diffuse = enum_named<AshikhminDiffuse>(a.string(kDiffuse));
                 s.rho_d = a.number_list(kRhoD);
                 if (s.rho_d.size() != 1 && int(s.rho_d.size()) != c.facets.channels)
                     a.fail("rho_d", "has " + std::to_string(s.rho_d.size()) +

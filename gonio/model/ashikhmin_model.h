@@ -10,6 +10,7 @@
 // rho_d [A00 section 5.1]), R(k) being the specular directional albedo [A00 Eq. 29].
 // g and R are tabulated over the directions by numerical integration (theta only when p is
 // isotropic) and interpolated bilinearly, as A00 section 5.2 does. p need not be normalised.
+#include "core/enum_names.h"
 #include "gonio/material/fresnel_term.h"
 #include "gonio/model/brdf_model.h"
 #include "heightfield/ndf/ndf.h"
@@ -37,6 +38,11 @@ NormalDensity velvet_density(double sigma);
 // The diffuse term that takes what the specular part leaves: none, a dielectric's [A00 Eq. 28-30]
 // or a metal's [A00 section 5.1].
 enum class AshikhminDiffuse { none, dielectric, metal };
+template <>
+struct EnumNames<AshikhminDiffuse> {
+    static constexpr const char* what = "diffuse term";
+    static constexpr const char* names[] = {"none", "dielectric", "metal"};
+};
 
 struct AshikhminSettings {
     double correlation_width = 0; // radians; 0: uncorrelated [A00 Eq. 13]

@@ -116,7 +116,7 @@ const ModelKind& il_model_kind() {
             m.compared_with = ModelTarget::l1;
             m.description = "interfaced Lambertian microfacets, single scattering f_s + f_b "
                             "[M18 Eq. 12-13], masking " +
-                            std::string(masking_name(c.masking));
+                            std::string(name_of(c.masking));
             m.build = integrated(c,
                                  [ndf = c.ndf, eta = c.facets.interface_eta,
                                   albedo = c.facets.albedo, masking = c.masking,

@@ -73,7 +73,7 @@ const ModelKind& l1_model_kind() {
             m.name = "l1";
             m.compared_with = ModelTarget::l1;
             m.description = "Model L1: the specular microfacet BRDF [R19 Eq. 2], masking " +
-                            std::string(masking_name(c.masking));
+                            std::string(name_of(c.masking));
             m.build =
                 integrated(c,
                            [ndf = c.ndf, fresnel = c.facets.fresnel,

@@ -1,14 +1,15 @@
 #include "gonio/model/model_kind.h"
 
+#include "core/registry.h"
+
 namespace gonio {
 
 namespace {
-const char* const kMaskingNames[] = {"height-correlated", "uncorrelated", "v-cavity"};
 const Key kMasking =
-    Key::string("masking", {kMaskingNames[0], kMaskingNames[1], kMaskingNames[2]},
+    Key::string("masking", enum_names<MaskingForm>(),
                 "G2 of Model L1 and of the IL model: Smith [R19 Eq. 9, 3] or Torrance-Sparrow "
                 "[M18 Eq. 15]")
-        .fallback(kMaskingNames[0]);
+        .fallback(name_of(MaskingForm::height_correlated));
 const Key kQuadrature =
     Key::integer("quadrature", {1, 64}, "Gauss-Legendre points per axis inside each cell")
         .fallback(4.0);
@@ -30,10 +31,6 @@ const Key& models_key() {
 }
 } // namespace
 
-const char* masking_name(MaskingForm form) {
-    return kMaskingNames[int(form)];
-}
-
 const std::vector<const ModelKind*>& model_kinds() {
     static const std::vector<const ModelKind*> kinds = {
         &l1_model_kind(), &il_model_kind(), &vcavity_model_kind(), &ashikhmin_model_kind(),
@@ -44,9 +41,7 @@ const std::vector<const ModelKind*>& model_kinds() {
 ModelSettings read_models(TableReader r, const FacetSpec& facets, std::shared_ptr<const Ndf> ndf,
                           long long trace_rays, int max_bounces) {
     ModelSettings s;
-    const std::string masking = r.string(kMasking);
-    for (int k = 0; k < 3; ++k)
-        if (masking == kMaskingNames[k]) s.masking = MaskingForm(k);
+    s.masking = enum_named<MaskingForm>(r.string(kMasking));
     s.quadrature.points = static_cast<int>(r.integer(kQuadrature));
     s.quadrature.rel_tol = r.number(kTolerance);
     const bool evaluate = r.boolean(kEvaluate);
@@ -57,8 +52,7 @@ ModelSettings read_models(TableReader r, const FacetSpec& facets, std::shared_pt
                                s.quadrature, trace_rays,     max_bounces};
     // Every chosen kind reads its keys even with evaluate = false, so that they count as used.
     for (const std::string& name : names)
-        for (const ModelKind* kind : model_kinds())
-            if (kind->name == name) s.models.push_back(kind->create(r, context));
+        s.models.push_back(find_named(model_kinds(), name, "model").create(r, context));
     if (!evaluate) s.models.clear();
     return s;
 }

@@ -35,6 +35,7 @@ struct ModelChoice {
     std::string description; // with its settings, for the file
     ModelTarget compared_with = ModelTarget::l1;
     bool needs_surface = false; // fitted to the traced surface (the P-BRDF)
+    bool monte_carlo = false;   // an estimate with batches (the V-cavity), not a quadrature
     // The model, ready to evaluate on the cells; `surface` is the case's first surface (null
     // unless needs_surface).
     std::function<std::unique_ptr<CellModel>(const HeightField* surface)> build;
@@ -68,7 +69,6 @@ struct ModelSettings {
 ModelSettings read_models(TableReader r, const FacetSpec& facets, std::shared_ptr<const Ndf> ndf,
                           long long trace_rays, int max_bounces);
 std::vector<KeyGroup> model_key_groups();
-const char* masking_name(MaskingForm form);
 std::vector<KeyGroup> ashikhmin_key_groups(); // the nested table model.ashikhmin
 
 const ModelKind& l1_model_kind();

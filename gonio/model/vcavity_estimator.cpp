@@ -158,6 +158,7 @@ const ModelKind& vcavity_model_kind() {
             ModelChoice m;
             m.name = "vcavity";
             m.compared_with = ModelTarget::linf;
+            m.monte_carlo = true;
             const long long rays = r.integer(kRays.name, kRays.range, c.trace_rays);
             m.description = "V-cavity multiple scattering, every order [M18 section 3.3], " +
                             std::to_string(rays) + " paths per incidence";

@@ -8,8 +8,7 @@ namespace gonio {
 
 CaseAssembler::CaseAssembler(const CaseConfig& c, bool simulated) : c_(c), simulated_(simulated) {
     result_.sensor = std::make_unique<BeckersSensor>(c.sensor_cells);
-    for (int k = 0; k < result_.sensor->cell_count(); ++k)
-        projected_solid_angle_.push_back(result_.sensor->cell(k).projected_solid_angle);
+    projected_solid_angle_ = result_.sensor->projected_solid_angles();
     result_.phases.add(Phase::ndf, c.ndf_seconds);
     const size_t nt = c.theta_i_deg.size(), np = c.phi_i_deg.size();
     expected_ = nt * np;
@@ -39,7 +38,12 @@ void CaseAssembler::add(const UnitId& id, UnitResult&& u, const RunObserver& obs
         for (size_t k = 0; k < u.models.size(); ++k)
             result_.models[k].allocate(c_.theta_i_deg.size(), c_.phi_i_deg.size(), psa.size(),
                                        size_t(c_.channels()), u.models[k].monte_carlo());
-    for (size_t k = 0; k < u.models.size(); ++k) result_.models[k].put(t, p, u.models[k], psa);
+    // The unit's own times: its traces', then its models'.
+    for (const TraceResult& m : u.members) result_.phases.add(Phase::trace, m.seconds);
+    for (size_t k = 0; k < u.models.size(); ++k) {
+        result_.models[k].put(t, p, u.models[k], psa);
+        result_.phases.add_model(result_.models[k].name, u.models[k].seconds);
+    }
     if (surface_from_ < 0 || (long long)at < surface_from_)
         surface_from_ = at, surface_ = u.surface;
 

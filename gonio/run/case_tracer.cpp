@@ -21,6 +21,11 @@ std::uint64_t incidence_stream(const UnitId& u) {
 namespace {
 using Clock = PhaseTimes::Clock;
 
+Vec3 incidence_direction(const CaseConfig& c, const UnitId& id) {
+    return spherical_direction(radians(c.theta_i_deg[id.theta_index]),
+                               radians(c.phi_i_deg[id.phi_index]));
+}
+
 std::string incidence_label(const CaseConfig& c, const UnitId& id) {
     char text[200];
     std::snprintf(text, sizeof text, "%s theta_i=%g phi_i=%g", c.name.c_str(),
@@ -124,10 +129,9 @@ class CaseTracer {
         ts.stream = r == 0 ? base : base ^ realisation_seed(base, r);
         ts.rays = i.per_surface;
         if (first_ > 1) ts.target = AccuracyTarget{};
-        const Vec3 wi = spherical_direction(radians(c_.theta_i_deg[i.id.theta_index]),
-                                            radians(c_.phi_i_deg[i.id.phi_index]));
-        ScopedPhase t(phases_, Phase::trace);
-        TraceResult trace = trace_incidence(scene, parts_, sensor_, wi, ts);
+        // (Its time, and its models', are the unit's own: the assembly adds them to the phases.)
+        TraceResult trace =
+            trace_incidence(scene, parts_, sensor_, incidence_direction(c_, i.id), ts);
         if (first_ > 1 && c_.trace.target.active()) i.ensemble.add(trace);
         i.members.push_back(std::move(trace));
     }
@@ -165,13 +169,9 @@ class CaseTracer {
         u.members = std::move(i.members);
         u.stop = stop, u.passes = i.passes, u.error = i.error;
         u.surface = surface_text_;
-        if (models_) {
-            const Vec3 wi = spherical_direction(radians(c_.theta_i_deg[i.id.theta_index]),
-                                                radians(c_.phi_i_deg[i.id.phi_index]));
-            u.models = models_->evaluate(wi, sensor_, work_.seed, incidence_stream(i.id));
-            for (size_t k = 0; k < u.models.size(); ++k)
-                phases_.add_model(c_.model.models[k].name, u.models[k].seconds);
-        }
+        if (models_)
+            u.models = models_->evaluate(incidence_direction(c_, i.id), sensor_, work_.seed,
+                                         incidence_stream(i.id));
         i.ensemble = IncidenceEnsemble{};
         if (context_.observer.unit_done) context_.observer.unit_done(i.id);
         sink_(i.id, std::move(u));
@@ -220,10 +220,8 @@ void model_case(const CaseWork& work, const RunContext& context, PhaseTimes& pha
         context.check_stop();
         if (context.observer.started) context.observer.started(incidence_label(c, id));
         UnitResult u;
-        const Vec3 wi = spherical_direction(radians(c.theta_i_deg[ti]), radians(c.phi_i_deg[pi]));
-        u.models = models.evaluate(wi, sensor, work.seed, incidence_stream(id));
-        for (size_t k = 0; k < u.models.size(); ++k)
-            phases.add_model(c.model.models[k].name, u.models[k].seconds);
+        u.models =
+            models.evaluate(incidence_direction(c, id), sensor, work.seed, incidence_stream(id));
         if (context.observer.unit_done) context.observer.unit_done(id);
         sink(id, std::move(u));
     }

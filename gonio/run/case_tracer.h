@@ -26,9 +26,10 @@ struct CaseWork {
 
 using UnitSink = std::function<void(const UnitId&, UnitResult&&)>;
 
-// Computes `work`'s units and hands each to `sink` when complete; the case's phases (surface,
-// scene, models_setup, trace, model_<name>) are added to `phases`. Throws Interrupted between
-// incidences when the context says to stop.
+// Computes `work`'s units and hands each to `sink` when complete; the phases of what is shared
+// by the units (surface, scene, models_setup) are added to `phases` (a unit carries the time of
+// its own traces and models). Throws Interrupted between incidences when the context says to
+// stop.
 void trace_case(const CaseWork& work, const RunContext& context, PhaseTimes& phases,
                 const UnitSink& sink);
 

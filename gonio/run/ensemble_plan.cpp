@@ -22,12 +22,15 @@ EnsembleStep plan_ensemble(const AccuracyTarget& target, int most, const Ensembl
     // least twice the pilot, so that the pilot is at most half of the final estimate). Where the
     // rays' part would still be more than half the target's variance, the new surfaces get more
     // rays each.
-    const double e2 = s.error * s.error, g2 = goal * goal;
+    // (An error that is not finite, a quantity of mean 0, asks for the most: clamped in double
+    // before any cast.)
+    const double e2 = std::isfinite(s.error) ? s.error * s.error : 1e300, g2 = goal * goal;
     const double rays = (1 - surface_share()) * e2;
-    int want = std::min(most, std::max(2 * has, int(std::ceil(has * e2 / g2 * 1.05))));
+    int want = int(std::min(double(most), std::max(2.0 * has, std::ceil(has * e2 / g2 * 1.05))));
     const double rays_then = rays * has / want;
     if (rays_then > 0.5 * g2)
-        step.per_surface = (long long)std::ceil(double(s.per_surface) * rays_then / (0.5 * g2));
+        step.per_surface = (long long)std::min(
+            double(target.max_rays), std::ceil(double(s.per_surface) * rays_then / (0.5 * g2)));
     const long long left = target.max_rays - s.rays;
     want = int(std::min<long long>(want, has + std::max(0LL, left) / step.per_surface));
     if (want <= has) return step.stop = StopReason::max_rays, step;

@@ -36,9 +36,9 @@ RunResult run_local(const Config& cfg, const RunOptions& options, const Checkpoi
         if (checkpoint.resume) resumed = resume_from(checkpoint.path, cfg, identity);
         file = std::make_unique<UnitFileWriter>(checkpoint.path, identity, checkpoint.resume);
     }
-    for (NumberedUnit& u : resumed) assembly.add(u.id, std::move(u.result));
     if (checkpoint.resume && context.observer.resumed)
         context.observer.resumed((long long)resumed.size(), layout.total());
+    for (NumberedUnit& u : resumed) assembly.add(u.id, std::move(u.result));
     resumed.clear();
     long long added = 0;
     auto sink = [&](const UnitId& id, UnitResult&& u) {

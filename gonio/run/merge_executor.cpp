@@ -70,10 +70,11 @@ class BatchShards {
 RunResult merge_parts(const std::vector<std::string>& parts, const RunOptions& options) {
     const ResultFloatMode mode; // every entry point computes in one floating-point mode
     if (parts.empty()) throw std::runtime_error("no part files to merge");
+    const RunContext context =
+        run_context(options); // outlives the assembly, which holds its observer
     UnitFileHeader first;
     std::unique_ptr<RunResult> result;
     std::unique_ptr<RunAssembly> assembly;
-    RunContext context = run_context(options);
     std::map<long long, std::string> owner; // unit -> the part that holds it
     BatchShards batches;
     for (size_t k = 0; k < parts.size(); ++k) {
@@ -105,7 +106,7 @@ RunResult merge_parts(const std::vector<std::string>& parts, const RunOptions& o
     }
     if (!batches.empty()) {
         NumberedUnit u = batches.combined();
-        check_units({u}, result->config, batches.first_part());
+        check_unit(u, result->config, batches.first_part());
         owner.emplace(u.number, "the batch shards");
         assembly->add(u.id, std::move(u.result));
     }

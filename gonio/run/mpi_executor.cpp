@@ -3,6 +3,7 @@
 #include "core/float_mode.h"
 #include "gonio/run/mpi_job.h"
 #include "gonio/run/run_assembly.h"
+#include "gonio/run/unit_file.h"
 #include "heightfield/surface_source.h"
 
 #include <stdexcept>
@@ -28,7 +29,8 @@ std::optional<RunResult> run_mpi(const Config& cfg, const RunOptions& options) {
             }
     mpi_barrier();
     const UnitLayout layout(cfg);
-    auto mine = [&](const UnitId& id) { return layout.number(id) % job.size == job.rank; };
+    const Shard share{job.rank, job.size}; // this rank's units
+    auto mine = [&](const UnitId& id) { return share.owns(layout.number(id)); };
     if (job.rank != 0) {
         std::vector<NumberedUnit> units;
         std::vector<PhaseTimes> phases(cfg.cases.size());
@@ -46,7 +48,11 @@ std::optional<RunResult> run_mpi(const Config& cfg, const RunOptions& options) {
     compute_units(
         cfg, context, mine, true, [&](size_t ci) -> PhaseTimes& { return assembly.phases(ci); },
         [&](const UnitId& id, UnitResult&& u) { assembly.add(id, std::move(u)); });
-    for (NumberedUnit& u : mpi_receive_units()) assembly.add(u.id, std::move(u.result));
+    // The other ranks' units, checked and folded in one at a time as they arrive.
+    mpi_receive_units([&](NumberedUnit&& u) {
+        check_unit(u, cfg, "a message from another rank");
+        assembly.add(u.id, std::move(u.result));
+    });
     result.cases = assembly.finish();
     return result;
 }

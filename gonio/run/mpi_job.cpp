@@ -77,8 +77,7 @@ void mpi_send_units(const std::vector<NumberedUnit>& units) {
     MPI_Send(end, 4, MPI_LONG_LONG, 0, kHeader, MPI_COMM_WORLD);
 }
 
-std::vector<NumberedUnit> mpi_receive_units() {
-    std::vector<NumberedUnit> units;
+void mpi_receive_units(const std::function<void(NumberedUnit&&)>& take) {
     for (int open = job.size - 1; open > 0;) {
         long long h[4];
         MPI_Status st;
@@ -94,15 +93,12 @@ std::vector<NumberedUnit> mpi_receive_units() {
         std::vector<char> bytes(static_cast<size_t>(count));
         MPI_Recv(bytes.data(), count, MPI_BYTE, st.MPI_SOURCE, kBody, MPI_COMM_WORLD,
                  MPI_STATUS_IGNORE);
-        units.push_back({h[0], {size_t(h[1]), size_t(h[2]), size_t(h[3])}, deserialise(bytes)});
+        take({h[0], {size_t(h[1]), size_t(h[2]), size_t(h[3])}, deserialise(bytes)});
     }
-    return units;
 }
 #else
 void mpi_send_units(const std::vector<NumberedUnit>&) {}
-std::vector<NumberedUnit> mpi_receive_units() {
-    return {};
-}
+void mpi_receive_units(const std::function<void(NumberedUnit&&)>&) {}
 #endif
 
 } // namespace gonio

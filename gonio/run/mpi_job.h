@@ -5,6 +5,7 @@
 // one-process code path (gonio/run/mpi_executor.cpp).
 #include "gonio/run/unit.h"
 
+#include <functional>
 #include <vector>
 
 namespace gonio {
@@ -21,7 +22,7 @@ void mpi_finish();
 void mpi_barrier();
 // Ranks other than 0: every unit, then an end marker, to rank 0.
 void mpi_send_units(const std::vector<NumberedUnit>& units);
-// Rank 0: the units of every other rank.
-std::vector<NumberedUnit> mpi_receive_units();
+// Rank 0: the units of every other rank, each handed to `take` as it arrives.
+void mpi_receive_units(const std::function<void(NumberedUnit&&)>& take);
 
 } // namespace gonio

@@ -8,8 +8,9 @@ void write_result(const RunResult& r, ResultWriter& writer) {
     auto t = PhaseTimes::Clock::now();
     PhaseTimes run = r.phases;
     writer.write_run(r.config, r.command_line);
-    writer.write_execution(r.execution.ranks, r.execution.threads_per_rank,
-                           r.execution.merged_parts);
+    if (r.simulated) // how the traces were spread (gonio model traces nothing)
+        writer.write_execution(r.execution.ranks, r.execution.threads_per_rank,
+                               r.execution.merged_parts);
     t = run.add_since(Phase::writing, t);
     for (size_t ci = 0; ci < r.cases.size(); ++ci) {
         const CaseConfig& c = r.config.cases[ci];

@@ -1,7 +1,7 @@
 #pragma once
 // What every executor of a run shares: the seed, the workers, the surface cache, how to report
 // progress, and when to stop. The library reports through RunObserver; the command line prints
-// what it hears, the Python module calls back, the tests count.
+// what it hears, the tests count.
 #include "gonio/config/config.h"
 #include "gonio/io/simulation_result.h"
 #include "gonio/model/cell_model.h"

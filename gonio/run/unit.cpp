@@ -116,12 +116,15 @@ void model_fields(IO& io, M& m) {
     io(m.energy), io(m.seconds), io(m.relative_tolerance), io(m.batches), io(m.energy_batches);
     io(m.albedo_stderr), io(m.l1_energy), io(m.l1_albedo), io(m.l2_albedo), io(m.l2plus_albedo);
 }
+// The fewest bytes one trace and one model's record take (their counts and sizes alone), so that
+// a corrupt count is refused before anything is allocated for it.
+constexpr std::uint64_t kMinTraceBytes = 29 * 8, kMinModelBytes = 7 * 8;
 template <class IO, class U, class Count>
 void unit_fields(IO& io, U& u, Count& count) {
-    count(u.members);
+    count(u.members, kMinTraceBytes);
     for (auto& t : u.members) trace_fields(io, t);
     io(u.stop), io(u.passes), io(u.error), io(u.surface);
-    count(u.models);
+    count(u.models, kMinModelBytes);
     for (auto& m : u.models) model_fields(io, m);
 }
 } // namespace
@@ -129,7 +132,7 @@ void unit_fields(IO& io, U& u, Count& count) {
 std::vector<char> serialise(const UnitResult& u) {
     Writer w;
     auto io = [&](const auto& v) { w.put(v); };
-    auto count = [&](const auto& v) { w.put(std::uint64_t(v.size())); };
+    auto count = [&](const auto& v, std::uint64_t) { w.put(std::uint64_t(v.size())); };
     unit_fields(io, u, count);
     return std::move(w.out);
 }
@@ -137,10 +140,10 @@ std::vector<char> serialise(const UnitResult& u) {
 UnitResult deserialise(const std::vector<char>& bytes) {
     Reader r{bytes};
     auto io = [&](auto& v) { r.get(v); };
-    auto count = [&](auto& v) {
+    auto count = [&](auto& v, std::uint64_t least) {
         std::uint64_t n = 0;
         r.get(n);
-        r.need(n); // every element takes a byte at least: a corrupt count fails here
+        r.need(n > (bytes.size() - r.at) / least ? bytes.size() + 1 : n * least);
         v.resize(n);
     };
     UnitResult u;

@@ -163,49 +163,82 @@ std::vector<NumberedUnit> read_unit_file(const std::string& path, UnitFileHeader
 }
 
 namespace {
-// What is wrong with a unit of case c, or "".
-std::string unit_problem(const UnitResult& u, const CaseConfig& c, bool batch_shard) {
+// What is wrong with a trace of case c (every array against the layout), or "".
+std::string trace_problem(const TraceResult& t, const CaseConfig& c) {
     const size_t cells = size_t(c.sensor_cells), nc = size_t(c.channels());
     const size_t orders = size_t(c.trace.orders) + 1, map = orders * cells * nc;
+    if (t.orders != int(orders) || t.cells != int(cells) || t.channels != int(nc))
+        return "a trace of another layout (orders, cells or channels)";
+    if (t.batches < 1 || t.batches > 1 << 20) return "a trace with no batches";
+    const size_t B = size_t(t.batches);
+    const bool transmits = c.material.transmits;
+    auto fits = [](const std::vector<double>& v, size_t n) { return v.size() == n; };
+    bool ok = fits(t.energy, map) && fits(t.energy_stderr, map) &&
+              fits(t.energy_batches, B * map) && fits(t.transmitted, transmits ? map : 0) &&
+              fits(t.transmitted_stderr, transmits ? map : 0) &&
+              fits(t.transmitted_batches, transmits ? B * map : 0);
+    for (const EnergyLedger* l : {&t.ledger, &t.ledger_stderr, &t.ledger_batches}) {
+        const size_t b = l == &t.ledger_batches ? B : 1;
+        ok = ok && fits(l->reflected, b * orders * nc) &&
+             fits(l->transmitted, transmits ? b * orders * nc : 0) && fits(l->absorbed, b * nc) &&
+             fits(l->capped, b * nc) && fits(l->lost, b * nc) && fits(l->unaccounted, b * nc);
+    }
+    return ok ? "" : "a trace whose arrays do not fit its layout";
+}
+
+// What is wrong with a model's record at one incidence, or "".
+std::string model_problem(const ModelIncidence& m, size_t cells, size_t nc) {
+    if (m.energy.size() != cells * nc) return "a model whose arrays do not fit the case";
+    if (m.batches < 0 || m.batches > 1 << 20) return "a model with a bad batch count";
+    if (!m.monte_carlo()) return "";
+    const bool ok = m.energy_batches.size() == size_t(m.batches) * cells * nc &&
+                    m.l1_energy.size() == cells * nc && m.albedo_stderr.size() == nc &&
+                    m.l1_albedo.size() == nc && m.l2_albedo.size() == nc &&
+                    m.l2plus_albedo.size() == nc;
+    return ok ? "" : "a Monte Carlo model whose arrays do not fit the case";
+}
+
+// What is wrong with a unit of case c, or "".
+std::string unit_problem(const UnitResult& u, const CaseConfig& c, bool batch_shard) {
     const size_t surfaces = u.members.size();
     if (c.surface.realisations == 1 ? surfaces != 1 : surfaces < 2)
         return std::to_string(surfaces) + " traces for " + std::to_string(c.surface.realisations) +
                " surface(s)";
-    for (const TraceResult& t : u.members) {
-        const size_t B = size_t(std::max(0, t.batches));
-        if (t.orders != int(orders) || t.cells != int(cells) || t.channels != int(nc))
-            return "a trace of another layout (orders, cells or channels)";
-        if (B < 1 || t.energy.size() != map || t.energy_batches.size() != B * map ||
-            t.ledger.reflected.size() != orders * nc ||
-            t.ledger_batches.reflected.size() != B * orders * nc)
-            return "a trace whose arrays do not fit its layout";
-    }
+    if (size_t(u.stop) >= enum_count<StopReason>()) return "an unknown stop reason";
+    for (const TraceResult& t : u.members)
+        if (const std::string why = trace_problem(t, c); !why.empty()) return why;
     if (u.models.size() != c.model.models.size() && !(batch_shard && u.models.empty()))
         return std::to_string(u.models.size()) + " models for the case's " +
                std::to_string(c.model.models.size());
-    for (const ModelIncidence& m : u.models)
-        if (m.energy.size() != cells * nc ||
-            (m.monte_carlo() && m.energy_batches.size() != size_t(m.batches) * cells * nc))
-            return "a model whose arrays do not fit the case";
+    for (size_t k = 0; k < u.models.size(); ++k) {
+        if (const std::string why =
+                model_problem(u.models[k], size_t(c.sensor_cells), size_t(c.channels()));
+            !why.empty())
+            return why;
+        if (u.models[k].monte_carlo() != c.model.models[k].monte_carlo)
+            return "model " + c.model.models[k].name + " of another kind";
+    }
     return "";
 }
 } // namespace
 
+void check_unit(const NumberedUnit& u, const Config& cfg, const std::string& file,
+                bool batch_shard) {
+    const std::string which = file + ": unit " + std::to_string(u.number);
+    const UnitId& id = u.id;
+    if (id.case_index >= cfg.cases.size() ||
+        id.theta_index >= cfg.cases[id.case_index].theta_i_deg.size() ||
+        id.phi_index >= cfg.cases[id.case_index].phi_i_deg.size() ||
+        UnitLayout(cfg).number(id) != u.number)
+        throw std::runtime_error(which + ": no such incidence in the run's config");
+    if (const std::string why = unit_problem(u.result, cfg.cases[id.case_index], batch_shard);
+        !why.empty())
+        throw std::runtime_error(which + ": " + why);
+}
+
 void check_units(const std::vector<NumberedUnit>& units, const Config& cfg, const std::string& file,
                  bool batch_shard) {
-    const UnitLayout layout(cfg);
-    for (const NumberedUnit& u : units) {
-        const std::string which = file + ": unit " + std::to_string(u.number);
-        const UnitId& id = u.id;
-        if (id.case_index >= cfg.cases.size() ||
-            id.theta_index >= cfg.cases[id.case_index].theta_i_deg.size() ||
-            id.phi_index >= cfg.cases[id.case_index].phi_i_deg.size() ||
-            layout.number(id) != u.number)
-            throw std::runtime_error(which + ": no such incidence in the run's config");
-        if (const std::string why = unit_problem(u.result, cfg.cases[id.case_index], batch_shard);
-            !why.empty())
-            throw std::runtime_error(which + ": " + why);
-    }
+    for (const NumberedUnit& u : units) check_unit(u, cfg, file, batch_shard);
 }
 
 } // namespace gonio

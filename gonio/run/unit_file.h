@@ -50,5 +50,7 @@ std::vector<NumberedUnit> read_unit_file(const std::string& path, UnitFileHeader
 // job's batches (its models may be absent).
 void check_units(const std::vector<NumberedUnit>& units, const Config& cfg, const std::string& file,
                  bool batch_shard = false);
+void check_unit(const NumberedUnit& unit, const Config& cfg, const std::string& file,
+                bool batch_shard = false);
 
 } // namespace gonio

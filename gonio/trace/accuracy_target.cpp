@@ -9,8 +9,6 @@
 namespace gonio {
 
 namespace {
-const char* const kQuantityNames[] = {"l1_albedo", "l2plus_albedo", "linf_albedo", "l1_cells",
-                                      "linf_cells"};
 const Key kTargetError = Key::number("target_error", {0, 1, true, false},
                                      "an accuracy target instead of a ray count: rounds of "
                                      "`trace.rays` are added until the target quantity's relative "
@@ -18,7 +16,7 @@ const Key kTargetError = Key::number("target_error", {0, 1, true, false},
                              .note_default("—");
 const Key kTarget =
     Key::string(
-        "target", {kQuantityNames, kQuantityNames + 5},
+        "target", enum_names<TargetQuantity>(),
         "the target quantity (the worst channel; `*_cells`: the worst cell whose BRDF is at "
         "least `trace.target_cell_fraction` of the brightest)")
         .fallback("l1_albedo");
@@ -37,19 +35,13 @@ const Key kMaxSeconds =
         .fallback(3600.0);
 } // namespace
 
-const char* name_of(TargetQuantity q) {
-    return kQuantityNames[int(q)];
-}
-
 std::vector<Key> accuracy_target_keys() {
     return {kTargetError, kTarget, kCellFraction, kMaxRays, kMaxSeconds};
 }
 
 AccuracyTarget read_accuracy_target(TableReader& r, long long rays) {
     AccuracyTarget t;
-    const std::string quantity = r.string(kTarget);
-    for (int k = 0; k < 5; ++k)
-        if (quantity == kQuantityNames[k]) t.quantity = TargetQuantity(k);
+    t.quantity = enum_named<TargetQuantity>(r.string(kTarget));
     t.cell_fraction = r.number(kCellFraction);
     t.max_rays = r.integer(kMaxRays);
     t.max_seconds = r.number(kMaxSeconds);

@@ -5,6 +5,7 @@
 // BRDF (L1 or every order) over the cells at least `cell_fraction` of the brightest, the worst
 // cell and channel.
 #include "core/config_key.h"
+#include "core/enum_names.h"
 #include "core/table_reader.h"
 #include "gonio/trace/trace_result.h"
 #include "sensor/beckers_sensor.h"
@@ -15,7 +16,12 @@
 namespace gonio {
 
 enum class TargetQuantity { l1_albedo, l2plus_albedo, linf_albedo, l1_cells, linf_cells };
-const char* name_of(TargetQuantity q); // "l1_albedo", ...
+template <>
+struct EnumNames<TargetQuantity> {
+    static constexpr const char* what = "target quantity";
+    static constexpr const char* names[] = {"l1_albedo", "l2plus_albedo", "linf_albedo", "l1_cells",
+                                            "linf_cells"};
+};
 
 struct AccuracyTarget {
     TargetQuantity quantity = TargetQuantity::l1_albedo;

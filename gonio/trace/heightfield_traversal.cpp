@@ -1,5 +1,6 @@
 #include "gonio/trace/heightfield_traversal.h"
 
+#include "core/check.h"
 #include "core/parallel.h"
 
 #include <algorithm>
@@ -27,7 +28,7 @@ struct Projected {
 
 HeightfieldTraversal::HeightfieldTraversal(const HeightField& s)
     : n_(s.n), avx2_(avx2_supported()) {
-    if (s.n < 2) throw std::invalid_argument("HeightfieldTraversal: grid size must be >= 2");
+    GONIO_CHECK(s.n >= 2); // Scene refuses smaller surfaces
     const int n = n_, v = n + 1;
     inv_spacing_ = 1.0 / s.spacing;
     spacing_ = s.spacing;

@@ -1,5 +1,7 @@
 #include "gonio/trace/trace_backend.h"
 
+#include "core/registry.h"
+
 #include <stdexcept>
 
 namespace gonio {
@@ -15,12 +17,7 @@ const TraceBackendKind& default_trace_backend() {
 }
 
 const TraceBackendKind& trace_backend_named(const std::string& name) {
-    std::string names;
-    for (const TraceBackendKind* b : trace_backends()) {
-        if (name == b->name) return *b;
-        names += (names.empty() ? "" : ", ") + std::string(b->name);
-    }
-    throw std::invalid_argument("unknown trace backend '" + name + "' (allowed: " + names + ")");
+    return find_named(trace_backends(), name, "trace backend");
 }
 
 } // namespace gonio

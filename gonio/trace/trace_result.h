@@ -56,7 +56,7 @@ struct TraceResult {
     double achieved_error = -1; // the target quantity's relative standard error (-1: no target)
 };
 
-// An ensemble of surfaces (gonio/pipeline/surface_ensemble.h): the surfaces' share of the variance,
+// An ensemble of surfaces (gonio/run/surface_ensemble.h): the surfaces' share of the variance,
 // per channel: of the L1, L2+ and L-infinity albedos, and the median over the cells whose L1 (resp.
 // L-infinity) BRDF is at least a tenth of the peak.
 struct SurfaceShares {

@@ -4,6 +4,7 @@
 //
 // Conventions (README): n = +z; D is normalised so that  integral D(m) (m.n) dw_m = 1  [R19 Eq. 2
 // text]; Smith's masking G1(v) = 1 / (1 + Lambda(v)) [R19 Eq. 8]; directions are unit vectors.
+#include "core/enum_names.h"
 #include "core/math.h"
 
 #include <string>
@@ -15,6 +16,11 @@ enum class MaskingForm {
     height_correlated, // G2 = 1 / (1 + Lambda(i) + Lambda(o))       [R19 Eq. 9]
     uncorrelated,      // G2 = G1(i) G1(o)                             [R19 Eq. 3]
     v_cavity,          // Torrance-Sparrow: min(1, 2 n.m n.i / i.m, 2 n.m n.o / o.m) [M18 Eq. 15]
+};
+template <>
+struct EnumNames<MaskingForm> {
+    static constexpr const char* what = "masking";
+    static constexpr const char* names[] = {"height-correlated", "uncorrelated", "v-cavity"};
 };
 
 class Ndf {
