@@ -32,7 +32,8 @@ int main(int argc, char** argv) {
         if (h.cells != table.data().cells) throw std::runtime_error("different sensors");
         const BeckersSensor sensor(h.cells);
         const std::string albedo_name = order_name + "_albedo";
-        const auto albedo = held.read(albedo_name), albedo_err = held.read(albedo_name + "_stderr");
+        const auto albedo = held.read_albedo(albedo_name),
+                   albedo_err = held.read_albedo(albedo_name + "_stderr");
         const size_t C = size_t(h.channels), N = size_t(h.cells);
         std::vector<double> f(C);
         for (size_t ti = 0; ti < h.theta_i_deg.size(); ++ti)

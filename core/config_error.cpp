@@ -1,5 +1,7 @@
 #include "core/config_error.h"
 
+#include "core/message.h"
+
 #include <algorithm>
 #include <vector>
 
@@ -14,7 +16,7 @@ std::string format(const std::string& file, int line, const std::string& key,
     else if (line == 0)
         where += " (--set)";
     if (key.empty()) return where + ": " + problem;
-    return where + ": key '" + key + "': " + problem;
+    return where + ": key '" + cut_text(key) + "': " + problem;
 }
 
 size_t edit_distance(const std::string& a, const std::string& b) {
@@ -36,6 +38,7 @@ ConfigError::ConfigError(const std::string& file, int line, const std::string& k
 
 std::string closest_name(const std::string& word, const std::string* candidates, size_t count) {
     std::string best;
+    if (word.size() > 64) return best; // no key is that long: not a typo of one
     size_t best_d = std::max<size_t>(2, word.size() / 3) + 1;
     for (size_t i = 0; i < count; ++i) {
         const size_t d = edit_distance(word, candidates[i]);

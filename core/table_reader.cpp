@@ -1,6 +1,7 @@
 #include "core/table_reader.h"
 
 #include "core/config_error.h"
+#include "core/message.h"
 
 #include <algorithm>
 #include <cmath>
@@ -123,7 +124,7 @@ std::string TableReader::string(const std::string& key, const std::vector<std::s
         list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
     }
     const std::string guess = closest_name(v, allowed.data(), allowed.size());
-    fail(key, "\"" + v + "\" is not allowed" +
+    fail(key, "\"" + cut_text(v) + "\" is not allowed" +
                   (guess.empty() ? "" : " (did you mean \"" + guess + "\"?)") +
                   "; allowed: " + list);
 }
@@ -144,12 +145,12 @@ TableReader::string_list(const std::string& key, const std::vector<std::string>&
             std::string list;
             for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
             const std::string guess = closest_name(*v, allowed.data(), allowed.size());
-            fail(key, "\"" + *v + "\" is not allowed" +
+            fail(key, "\"" + cut_text(*v) + "\" is not allowed" +
                           (guess.empty() ? "" : " (did you mean \"" + guess + "\"?)") +
                           "; allowed: " + list);
         }
         if (std::find(out.begin(), out.end(), *v) != out.end())
-            fail(key, "names \"" + *v + "\" twice");
+            fail(key, "names \"" + cut_text(*v) + "\" twice");
         out.push_back(*v);
     }
     return out;

@@ -4,6 +4,7 @@
 // (gonio export), 130 interrupted.
 #include "core/config_error.h"
 #include "core/float_mode.h"
+#include "core/message.h"
 #include "gonio/cli/cli_common.h"
 #include "gonio/cli/command.h"
 #include "gonio/run/mpi_job.h"
@@ -15,11 +16,21 @@
 
 namespace {
 
+// One line on stderr, long quotes cut; returns the exit code.
+int fail(const std::string& message, int code) {
+    std::fprintf(stderr, "gonio: error: %s\n", gonio::one_line(message).c_str());
+    return code;
+}
+
 int gonio_main(int argc, char** argv, const gonio::MpiJob& job) {
     CLI::App app{"gonio: a virtual gonioreflectometer for microfacet surfaces"};
     app.set_version_flag("--version",
                          std::string(gonio::kVersion) + " (git " + gonio::kGitHash + ")");
     app.require_subcommand(1);
+    // CLI11's errors in gonio's style: one line, exit 2 (below).
+    app.failure_message([](const CLI::App*, const CLI::Error& e) {
+        return "gonio: error: " + gonio::one_line(e.what()) + " (gonio --help lists the usage)\n";
+    });
     gonio::CliContext context;
     for (int k = 0; k < argc; ++k) context.command_line += (k ? " " : "") + std::string(argv[k]);
     context.rank = job.rank, context.ranks = job.size;
@@ -39,14 +50,13 @@ int gonio_main(int argc, char** argv, const gonio::MpiJob& job) {
         for (auto& [sub, action] : actions)
             if (*sub) return action();
     } catch (const gonio::UsageError& e) {
-        std::fprintf(stderr, "gonio: error: %s\n", e.what());
-        return 2;
+        return fail(e.what(), 2);
     } catch (const gonio::ConfigError& e) {
-        std::fprintf(stderr, "gonio: error: %s\n", e.what());
-        return 2;
+        return fail(e.what(), 2);
+    } catch (const std::bad_alloc&) {
+        return fail("out of memory (the run asked for more than the machine could give)", 1);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "gonio: error: %s\n", e.what());
-        return 1;
+        return fail(e.what(), 1);
     }
     return 0;
 }

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <unistd.h>
+#include <zlib.h>
 
 namespace gonio {
 
@@ -65,7 +66,42 @@ void write_channels_exr(const std::string& path, int width, int height,
 void write_height_exr(const std::string& path, const HeightField& s, const ExrAttributes& attrs) {
     ExrAttributes all = attrs;
     all.numbers["gonio_spacing"] = s.spacing;
+    all.text["gonio_heights_crc32"] = heights_checksum(s.h); // checked when the map is read
     write_channels_exr(path, s.n, s.n, {"Y"}, {s.h}, all);
+}
+
+std::string heights_checksum(const std::vector<float>& h) {
+    const uLong crc = crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(h.data()),
+                            uInt(h.size() * sizeof(float)));
+    char text[16];
+    std::snprintf(text, sizeof text, "%08lx", static_cast<unsigned long>(crc));
+    return text;
+}
+
+std::string height_map_problem(const HeightField& s) {
+    const double period = s.n * s.spacing;
+    float lo = s.h[0], hi = s.h[0];
+    for (float v : s.h) {
+        if (!std::isfinite(v)) return "the height map holds NaN or infinite values";
+        lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+    // A patch far taller than it is wide is no surface to trace (its rays would cross the
+    // patch's walls without end); heights far from 0 leave no float precision for its slopes.
+    char text[200];
+    if (double(hi) - double(lo) > kMaxReliefOverPeriod * period) {
+        std::snprintf(text, sizeof text,
+                      "its relief (%.3g) is more than %g times its period (%.3g): absurd for its "
+                      "size",
+                      double(hi) - double(lo), kMaxReliefOverPeriod, period);
+        return text;
+    }
+    if (std::max(std::abs(double(lo)), std::abs(double(hi))) > 1e6 * period) {
+        std::snprintf(text, sizeof text,
+                      "its heights reach %.3g, a million times its period (%.3g): level it first",
+                      std::max(std::abs(double(lo)), std::abs(double(hi))), period);
+        return text;
+    }
+    return "";
 }
 
 HeightField read_height_exr(const std::string& path, ExrAttributes* attrs) {
@@ -101,6 +137,8 @@ HeightField read_height_exr(const std::string& path, ExrAttributes* attrs) {
             HeightField s(w, 1.0);
             FrankotChellappa(w, 1).integrate(p, q, s.h);
             if (attrs) attrs->text["gonio_source"] = "normal map";
+            if (const std::string why = height_map_problem(s); !why.empty())
+                throw std::runtime_error(why);
             return s;
         }
         std::string channel;
@@ -116,19 +154,25 @@ HeightField read_height_exr(const std::string& path, ExrAttributes* attrs) {
         fb.insert(channel, Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * size_t(w)));
         file.setFrameBuffer(fb);
         file.readPixels(dw.min.y, dw.max.y);
+        ExrAttributes read; // every attribute, the checksum's included
         for (auto it = file.header().begin(); it != file.header().end(); ++it) {
             const std::string name = it.name();
             if (const auto* d = dynamic_cast<const Imf::DoubleAttribute*>(&it.attribute())) {
                 if (name == "gonio_spacing") s.spacing = d->value();
-                if (attrs) attrs->numbers[name] = d->value();
+                read.numbers[name] = d->value();
             } else if (const auto* t = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) {
-                if (attrs) attrs->text[name] = t->value();
+                read.text[name] = t->value();
             }
         }
-        if (!(s.spacing > 0)) throw std::runtime_error("gonio_spacing must be > 0");
-        for (float v : s.h)
-            if (!std::isfinite(v))
-                throw std::runtime_error("the height map holds NaN or infinite values");
+        if (attrs) *attrs = read;
+        if (!(s.spacing > 0) || !std::isfinite(s.spacing))
+            throw std::runtime_error("gonio_spacing must be finite and > 0");
+        if (read.text.count("gonio_heights_crc32") &&
+            read.text["gonio_heights_crc32"] != heights_checksum(s.h))
+            throw std::runtime_error("its heights do not match the checksum gonio wrote with them "
+                                     "(the file is damaged)");
+        if (const std::string why = height_map_problem(s); !why.empty())
+            throw std::runtime_error(why);
         return s;
     } catch (const std::runtime_error& e) {
         const std::string what = e.what();

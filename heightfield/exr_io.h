@@ -25,6 +25,14 @@ void write_height_exr(const std::string& path, const HeightField& surface,
 // file when it is missing, corrupt, not square or has no usable channel.
 HeightField read_height_exr(const std::string& path, ExrAttributes* attrs = nullptr);
 
+// The most relief a height map may have, in periods (n x spacing) of the patch.
+inline constexpr double kMaxReliefOverPeriod = 100;
+// What makes a height map no surface to trace (not finite, a relief absurd for its size, heights
+// far from 0), or "".
+std::string height_map_problem(const HeightField& surface);
+// The CRC-32 (zlib) of the heights' bytes, as gonio stores it with the maps it writes.
+std::string heights_checksum(const std::vector<float>& heights);
+
 // A multi-channel float image (e.g. measured vs target NDF maps), channels named in `names`,
 // each width*height values row-major.
 // The surface's normal map: per sample the normal of the slopes (p(x, y), q(x, y)) (its triangle

@@ -82,8 +82,11 @@ long long cache_size_limit() {
     const char* v = std::getenv("GONIO_CACHE_MAX");
     if (!v || !*v) return 0;
     char* end = nullptr;
-    double x = std::strtod(v, &end);
-    const std::string unit = end ? std::string(end) : "";
+    double x = std::strtod(v, &end); // (it skips leading spaces)
+    std::string unit = end ? std::string(end) : "";
+    // Spaces around the unit mean nothing: "2G", " 2G", "2G " and "2 G" are the same size.
+    unit.erase(0, unit.find_first_not_of(" \t"));
+    unit.erase(unit.find_last_not_of(" \t") + 1);
     const double scale = unit.empty() || unit == "B"   ? 1
                          : unit == "K" || unit == "KB" ? 1e3
                          : unit == "M" || unit == "MB" ? 1e6

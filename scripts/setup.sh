@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake pkg-config git
   libembree-dev libfftw3-dev libopenexr-dev libhdf5-dev libtbb-dev
-  libcli11-dev libtomlplusplus-dev doctest-dev nlohmann-json3-dev libpng-dev
+  libcli11-dev libtomlplusplus-dev doctest-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   libopenmpi-dev openmpi-bin
   python3-h5py python3-numpy python3-matplotlib python3-xarray python3-h5netcdf
 )

@@ -153,7 +153,7 @@ TEST_CASE("a bad config: one line naming file, line and key, exit code 2, no out
     const Run set =
         run_gonio(d, "model range.toml --set ndf.alpha=0.3 --set beam.theta_i=95 -o out.h5");
     CHECK(set.code == 2);
-    CHECK(set.err.find("key 'beam.theta_i': value 95 is out of range; allowed [0, 90)") !=
+    CHECK(set.err.find("key 'beam.theta_i': value 95 is out of range; allowed [0, 89.99]") !=
           std::string::npos);
     CHECK(files_in(d) == 2); // bad.toml, range.toml
     fs::remove_all(d);
@@ -215,7 +215,7 @@ TEST_CASE("every config error path: exit code 2, one line naming file and key, n
         {"[ndf]\ntype = \"ggx\"\nalpha = 0\n[beam]\ntheta_i = 0\n", "",
          "c.toml:3: key 'ndf.alpha': value 0 is out of range; allowed [1e-06, 100]"},
         {ok, "--set beam.theta_i=-1",
-         "key 'beam.theta_i': value -1 is out of range; allowed [0, 90)"},
+         "key 'beam.theta_i': value -1 is out of range; allowed [0, 89.99]"},
         {ok, "--set beam.phi_i=400",
          "key 'beam.phi_i': value 400 is out of range; allowed [0, 360]"},
         {ok, "--set sensor.cells=0",
@@ -227,7 +227,7 @@ TEST_CASE("every config error path: exit code 2, one line naming file and key, n
         {"[ndf\n", "", "c.toml:1: TOML syntax error"},
         // Outside gonio's domain: rejected before any work.
         {ok, "--set beam.theta_i=90",
-         "key 'beam.theta_i': value 90 is out of range; allowed [0, 90)"},
+         "key 'beam.theta_i': value 90 is out of range; allowed [0, 89.99]"},
         {ok, "--set ndf.type=student_t --set ndf.gamma=1.01",
          "key 'ndf.gamma': value 1.01 is outside gonio's domain [2, 1e6]"},
         {ok, "--set ndf.alpha=200", "key 'ndf.alpha': value 200 is out of range"},

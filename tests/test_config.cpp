@@ -131,7 +131,8 @@ TEST_CASE("config errors name the file, the line, the key and the allowed range"
         const ConfigError e =
             error_of("[ndf]\ntype = \"ggx\"\nalpha = 0.2\n[beam]\ntheta_i = [0, 90]\n");
         CHECK(e.line() == 5);
-        CHECK(contains(e.what(), "key 'beam.theta_i': value 90 is out of range; allowed [0, 90)"));
+        CHECK(
+            contains(e.what(), "key 'beam.theta_i': value 90 is out of range; allowed [0, 89.99]"));
     }
     SUBCASE("a cell count < 1") {
         const ConfigError e = error_of(std::string(kBase) + "[sensor]\ncells = 0\n");

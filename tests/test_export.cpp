@@ -136,7 +136,8 @@ TEST_CASE("export rgl: importance sampling through the file returns the L-infini
     export_to(input, "rgl", dir / "gold.bsdf");
     const RglBsdf rgl((dir / "gold.bsdf").string());
     const ResultCase c = read_result_case(input, "");
-    const std::vector<double> albedo = c.read("linf_albedo"), error = c.read("linf_albedo_stderr");
+    const std::vector<double> albedo = c.read_albedo("linf_albedo"),
+                              error = c.read_albedo("linf_albedo_stderr");
     Rng rng{21, 4};
     const int n = 100000;
     for (size_t ti : {size_t(0), size_t(6), size_t(12), size_t(15)}) { // 0, 30, 60, 75 degrees
@@ -392,8 +393,8 @@ TEST_CASE("export albedo: E(theta_i) per order with errors, and E_avg") {
                                               "wavelength_nm", "l1", "l1_stderr", "l2plus",
                                               "l2plus_stderr", "linf", "linf_stderr"});
     const ResultCase c = read_result_case(input, "");
-    const auto linf = c.read("linf_albedo"), l1 = c.read("l1_albedo"),
-               e = c.read("linf_albedo_stderr");
+    const auto linf = c.read_albedo("linf_albedo"), l1 = c.read_albedo("l1_albedo"),
+               e = c.read_albedo("linf_albedo_stderr");
     for (size_t r = 1; r < rows.size(); ++r) {
         CHECK(std::stod(rows[r][6]) == l1[r - 1]);
         CHECK(std::stod(rows[r][10]) == linf[r - 1]);

@@ -4,6 +4,7 @@
 #include "check_death.h"
 #include "core/check.h"
 #include "core/float_mode.h"
+#include "core/output_files.h"
 #include "core/parallel.h"
 #include "gonio/config/config.h"
 #include "gonio/run/ensemble_plan.h"
@@ -14,6 +15,7 @@
 #include <cstring>
 #include <doctest/doctest.h>
 #include <filesystem>
+#include <fstream>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <unistd.h>
@@ -215,4 +217,43 @@ TEST_CASE("every task of the library's parallel loops computes in the one floati
 TEST_CASE("an invariant that fails is a CHECK: it aborts, naming the condition") {
     CHECK(fails_check([] { GONIO_CHECK(1 + 1 == 3); }));
     CHECK(!fails_check([] { GONIO_CHECK(1 + 1 == 2); }));
+}
+
+TEST_CASE("outputs appear together or not at all, and a killed writer's temporaries are cleaned") {
+    const fs::path d = fresh("outputs");
+    const std::string a = (d / "a.png").string(), b = (d / "b.exr").string();
+    {
+        OutputSet files(false);
+        std::ofstream(files.add(a)) << "a";
+        std::ofstream(files.add(b)) << "b";
+        fs::create_directory(b); // the second cannot take its place
+        CHECK_THROWS_WITH_AS(files.commit(), doctest::Contains("b.exr"), std::runtime_error);
+    }
+    CHECK(!fs::exists(a)); // the first was renamed, then taken back
+    fs::remove(b);
+    for (const auto& e : fs::directory_iterator(d))
+        CHECK(e.path().string().find(".tmp-") == std::string::npos);
+    {
+        OutputSet files(false);
+        std::ofstream(files.add(a)) << "a";
+        // destroyed uncommitted: its temporary goes
+    }
+    CHECK(fs::is_empty(d));
+    {
+        OutputSet files(false);
+        std::ofstream(files.add(a)) << "a";
+        std::ofstream(files.add(b)) << "b";
+        files.commit();
+    }
+    CHECK(fs::exists(a));
+    CHECK(fs::exists(b));
+    // A temporary of a process that no longer runs is removed by the next writer; one of a
+    // living process (this one) is not.
+    const std::string dead = a + ".tmp-999999999", alive = a + ".tmp-" + std::to_string(::getpid());
+    std::ofstream(dead) << "x";
+    std::ofstream(alive) << "x";
+    CHECK(remove_stale_temporaries(a) == 1);
+    CHECK(!fs::exists(dead));
+    CHECK(fs::exists(alive));
+    fs::remove_all(d);
 }

@@ -1,4 +1,5 @@
 #include "core/enum_names.h"
+#include "gonio/cli/cli_common.h"
 #include "gonio/cli/command.h"
 #include "heightfield/surface_cache.h"
 
@@ -27,7 +28,7 @@ int cache_command_run(CacheAction action, const std::string& directory) {
     const auto entries = cache.list();
     long long total = 0;
     for (const CacheEntry& e : entries) total += e.bytes;
-    const long long limit = cache_size_limit();
+    const long long limit = checked_cache_limit();
     std::printf(
         "%s: %zu surface%s, %.1f MB%s\n", dir.c_str(), entries.size(),
         entries.size() == 1 ? "" : "s", total / 1e6,

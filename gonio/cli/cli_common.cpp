@@ -26,9 +26,17 @@ void add_common_options(CLI::App& app, CommonOptions& o, unsigned which) {
                        "~/.cache/gonio/surfaces)");
 }
 
+long long checked_cache_limit() {
+    try {
+        return cache_size_limit();
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+}
+
 SurfaceCache surface_cache(const CommonOptions& o) {
     if (o.no_cache) return SurfaceCache(std::string());
-    cache_size_limit(); // a bad GONIO_CACHE_MAX fails now, not after a surface was made
+    checked_cache_limit(); // a bad GONIO_CACHE_MAX fails now, not after a surface was made
     return SurfaceCache(o.cache_dir.empty() ? default_cache_directory() : o.cache_dir);
 }
 
@@ -50,6 +58,8 @@ std::string output_or_default(const std::string& output, const std::string& conf
 }
 
 void refuse_existing(const std::string& path, bool overwrite) {
+    if (std::filesystem::is_directory(path))
+        throw UsageError(path + ": is a directory; the output is a file");
     if (!overwrite && std::filesystem::exists(path))
         throw UsageError(path + ": exists; pass --overwrite to replace it");
 }

@@ -42,6 +42,8 @@ void add_common_options(CLI::App& app, CommonOptions& o, unsigned which);
 
 // The surface cache the options name (--no-cache: none); a bad GONIO_CACHE_MAX fails now.
 SurfaceCache surface_cache(const CommonOptions& o);
+// $GONIO_CACHE_MAX in bytes (0: unset); a value that is no size is a UsageError.
+long long checked_cache_limit();
 
 // The library's run options from the command line's: threads, cache, SIGINT as the stop, the
 // command line as provenance, and the wall time from `start` (the config read since then).
@@ -52,7 +54,7 @@ RunOptions run_options(const CommonOptions& o, const CliContext& context,
 std::string output_or_default(const std::string& output, const std::string& config,
                               const std::string& extension);
 
-// Refuses (UsageError, exit 2) to replace `path` unless --overwrite.
+// Refuses (UsageError, exit 2) an output that is a directory, or that exists without --overwrite.
 void refuse_existing(const std::string& path, bool overwrite);
 
 } // namespace gonio

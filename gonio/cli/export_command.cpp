@@ -19,6 +19,12 @@ int export_case(ExportArgs& a) {
     o.format = &export_format_named(a.format); // CLI11 checked the names
     o.orders = enum_named<TableOrder>(a.orders);
     try {
+        check_export_options(o);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+    refuse_existing(o.output, o.overwrite);
+    try {
         const ExportReport r = export_result(o);
         if (!o.quiet) {
             std::printf("%s: %s, %.1f MB in %.2f s\n", r.output.c_str(), o.format->name,

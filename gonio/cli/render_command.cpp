@@ -1,6 +1,7 @@
 // `gonio render FILE -o OUT.png`: the case's tabulated BSDF on an object (gonio/render), PNG and
 // EXR, and with --compare the images without multiple scattering or of Model L1, and their
 // Delta E00.
+#include "core/output_files.h"
 #include "gonio/cli/cli_common.h"
 #include "gonio/cli/command.h"
 #include "gonio/cli/progress.h"
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 #include <vector>
 
@@ -62,7 +64,14 @@ int render_case(const RenderOptions& o) {
             outputs.push_back(stem + suffix);
     if (o.compare == RenderComparison::model)
         for (const char* suffix : {"_model.png", "_model.exr"}) outputs.push_back(stem + suffix);
-    for (const std::string& p : outputs) refuse_existing(p, o.overwrite);
+    for (const std::string& p : outputs) {
+        refuse_existing(p, o.overwrite);
+        if (same_file(p, o.input)) throw UsageError(p + ": the output is the input");
+    }
+    // Every image appears, or none: each is written under its temporary name, all renamed last.
+    OutputSet files(o.overwrite);
+    std::map<std::string, std::string> temporary;
+    for (const std::string& p : outputs) temporary[p] = files.add(p);
     const auto limit = limit_threads(o.threads);
     const ResultCase c = read_result_case(o.input, o.case_name);
     if (!c.simulated)
@@ -91,8 +100,8 @@ int render_case(const RenderOptions& o) {
         return r;
     };
     auto save = [&](const Rendered& r, const std::string& suffix) {
-        write_png(r.result.image, stem + suffix + ".png");
-        write_exr(r.result.image, stem + suffix + ".exr");
+        write_png(r.result.image, temporary.at(stem + suffix + ".png"));
+        write_exr(r.result.image, temporary.at(stem + suffix + ".exr"));
     };
     if (c.transmits && !o.quiet)
         std::printf("note: case %s transmits; the render shows its reflection only\n",
@@ -100,7 +109,10 @@ int render_case(const RenderOptions& o) {
     const Rendered main = draw(rgb_table(c, table_data(c, TableOrder::linf), "L-infinity"),
                                "L-infinity (every order)");
     save(main, "");
-    if (o.compare == RenderComparison::none) return 0;
+    if (o.compare == RenderComparison::none) {
+        files.commit();
+        return 0;
+    }
     const Rendered l1 =
         draw(rgb_table(c, table_data(c, TableOrder::l1), "L1"), "L1 (single scattering)");
     save(l1, "_l1");
@@ -114,7 +126,8 @@ int render_case(const RenderOptions& o) {
         b = &model;
     }
     const std::vector<double> de = delta_e00(a->result.image, b->result.image);
-    write_png(false_colour(de, s.width, s.height), stem + "_de00.png");
+    write_png(false_colour(de, s.width, s.height), temporary.at(stem + "_de00.png"));
+    files.commit();
     const DifferenceStats st = difference_stats(de, main.result.object);
     std::printf("Delta E00 (%s against %s) over %lld object pixels: mean %.2f, 95th percentile "
                 "%.2f, max %.2f\n",

@@ -48,7 +48,13 @@ int run_here(const Config& cfg, RunOptions o, const RunArgs& a, const std::strin
         return 130;
     }
     table.finish();
-    write_result(result, writer);
+    try {
+        write_result(result, writer);
+    } catch (...) { // nothing left behind: not the checkpoint this run made either
+        std::error_code ec;
+        if (!a.resume) std::filesystem::remove(checkpoint, ec);
+        throw;
+    }
     std::filesystem::remove(checkpoint);
     if (!a.common.quiet) std::printf("wrote %s\n", output.c_str());
     return 0;

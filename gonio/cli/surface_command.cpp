@@ -1,3 +1,4 @@
+#include "core/output_files.h"
 #include "gonio/cli/cli_common.h"
 #include "gonio/cli/command.h"
 #include "gonio/cli/progress.h"
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 
 namespace gonio {
@@ -79,12 +81,19 @@ int surface(const CommonOptions& o) {
     const Config cfg = load_config(o.config, o.overrides); // throws ConfigError
     const auto limit = limit_threads(o.threads);
     const int threads = worker_threads(o.threads);
-    // Refuse to replace outputs before any work.
+    // Refuse to replace outputs (or an input map) before any work; every file of every case
+    // appears at the end, or none.
+    OutputSet files(o.overwrite);
+    std::map<std::string, std::string> temporary;
     for (const CaseConfig& c : cfg.cases) {
         const std::string out = output_for(o, cfg, c);
         for (const std::string& f : {out, sibling(out, "_ndf.exr"), sibling(out, "_ndf.csv"),
-                                     sibling(out, "_normals.exr")})
+                                     sibling(out, "_normals.exr")}) {
             refuse_existing(f, o.overwrite);
+            if (!c.surface.input.empty() && same_file(f, c.surface.input))
+                throw UsageError(f + ": the output is the case's input map");
+            temporary[f] = files.add(f);
+        }
     }
     const SurfaceCache cache = surface_cache(o);
     for (const CaseConfig& c : cfg.cases) {
@@ -121,10 +130,10 @@ int surface(const CommonOptions& o) {
         attrs.text["gonio_height_histogram"] = histogram;
         attrs.numbers["gonio_height_min"] = m.height_min;
         attrs.numbers["gonio_height_max"] = m.height_max;
-        write_height_exr(out, surface, attrs);
-        write_normal_exr(sibling(out, "_normals.exr"), surface, attrs);
-        write_ndf_comparison(sibling(out, "_ndf.exr"), sibling(out, "_ndf.csv"), m,
-                             ndf->describe());
+        write_height_exr(temporary.at(out), surface, attrs);
+        write_normal_exr(temporary.at(sibling(out, "_normals.exr")), surface, attrs);
+        write_ndf_comparison(temporary.at(sibling(out, "_ndf.exr")),
+                             temporary.at(sibling(out, "_ndf.csv")), m, ndf->describe());
         if (!origin.warning.empty())
             std::fprintf(stderr, "gonio: warning: %s\n", origin.warning.c_str());
         if (o.quiet) continue;
@@ -161,6 +170,7 @@ int surface(const CommonOptions& o) {
         std::printf("  wrote %s, %s, %s, %s\n", out.c_str(), sibling(out, "_normals.exr").c_str(),
                     sibling(out, "_ndf.exr").c_str(), sibling(out, "_ndf.csv").c_str());
     }
+    files.commit();
     return 0;
 }
 

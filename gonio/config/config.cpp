@@ -2,7 +2,9 @@
 
 #include "core/config_error.h"
 #include "core/float_mode.h"
+#include "core/message.h"
 #include "core/table_reader.h"
+#include "core/toml_limits.h"
 #include "gonio/config/overrides.h"
 #include "heightfield/ndf/ndf_family.h"
 
@@ -26,10 +28,13 @@ const Key kName =
     Key::string("name", {}, "case name (HDF5 group), of `A-Za-z0-9_.-+`").note_default("file stem");
 const Key kCase =
     Key::tables("case", "the cases: each overrides any section above").note_default("one case");
-const Key kThetaI = Key::numbers("theta_i", {0, 90, false, true}, "incidence polar angle; a sweep")
-                        .in_unit("degrees")
-                        .note_default("— (`gonio run`, `gonio model`)");
-const Key kPhiI = Key::numbers("phi_i", {0, 360}, "incidence azimuth; a sweep")
+// Below 90 by a margin: a beam's ray crosses about relief tan(theta_i) / L side walls before it
+// reaches the surface (at 89.99 deg, 5730 relief / L), so that every accepted incidence ends.
+const Key kThetaI =
+    Key::numbers("theta_i", {0, 89.99}, "incidence polar angle; a sweep, in increasing order")
+        .in_unit("degrees")
+        .note_default("— (`gonio run`, `gonio model`)");
+const Key kPhiI = Key::numbers("phi_i", {0, 360}, "incidence azimuth; a sweep, in increasing order")
                       .in_unit("degrees")
                       .fallback(std::vector<double>{0.0});
 const Key kCells =
@@ -200,6 +205,14 @@ class Loader {
         TableReader beam = reader(t, path, "beam");
         if (beam.has(kThetaI.name)) c.theta_i_deg = beam.number_list(kThetaI);
         c.phi_i_deg = beam.number_list(kPhiI);
+        // Each angle once, in order: a result file's axes are then checkable (sorted, no repeat).
+        for (const auto& [key, sweep] :
+             {std::pair{&kThetaI, &c.theta_i_deg}, {&kPhiI, &c.phi_i_deg}})
+            for (size_t k = 1; k < sweep->size(); ++k)
+                if (!((*sweep)[k] > (*sweep)[k - 1]))
+                    beam.fail(key->name, "must increase, each angle once (" +
+                                             shortest((*sweep)[k - 1]) + " then " +
+                                             shortest((*sweep)[k]) + ")");
         TableReader sensor = reader(t, path, "sensor");
         c.sensor_cells = static_cast<int>(sensor.integer(kCells));
         TableReader trace = reader(t, path, "trace");
@@ -221,13 +234,17 @@ class Loader {
             const toml::node* node = nullptr;
             if (const toml::array* arr = root_["case"].as_array())
                 node = (*arr)[k].as_table()->get("name");
-            if (n.empty() ||
+            // An HDF5 group and a file name: "." and ".." are neither.
+            if (n.empty() || n == "." || n == ".." ||
                 n.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
                                     "0123456789_.-+") != std::string::npos)
                 throw ConfigError(file_, line(node), key,
-                                  "\"" + n + "\" is not allowed; use letters, digits and _ . - +");
+                                  "\"" + cut_text(n) +
+                                      "\" is not allowed; use letters, digits and _ . - + (not "
+                                      "\".\" or \"..\" alone)");
             if (!seen.insert(n).second)
-                throw ConfigError(file_, line(node), key, "\"" + n + "\" names two cases");
+                throw ConfigError(file_, line(node), key,
+                                  "\"" + cut_text(n) + "\" names two cases");
         }
     }
 
@@ -314,6 +331,8 @@ std::string keys_text() {
 Config parse_config(const std::string& text, const std::string& path,
                     const std::vector<std::string>& overrides) {
     const ResultFloatMode mode; // the distributions' tables are computed here
+    if (const std::string why = toml_limits_problem(text); !why.empty())
+        throw ConfigError(path, -1, "", why);
     toml::table root;
     try {
         root = toml::parse(text, path);

@@ -1,6 +1,7 @@
 #include "gonio/config/overrides.h"
 
 #include "core/config_error.h"
+#include "core/toml_limits.h"
 
 #include <sstream>
 #include <vector>
@@ -34,7 +35,12 @@ void apply_override(toml::table& root, const std::string& assignment, const std:
         throw ConfigError(file, 0, assignment, "--set expects key.path=value");
     const std::string path = assignment.substr(0, eq);
     const std::string text = assignment.substr(eq + 1);
+    if (const std::string why = toml_limits_problem(assignment); !why.empty())
+        throw ConfigError(file, 0, "", "--set: " + why);
     const std::vector<std::string> parts = split_path(path);
+    if (parts.size() >= size_t(kMaxTomlDepth))
+        throw ConfigError(file, 0, path,
+                          "--set: a key of more than " + std::to_string(kMaxTomlDepth) + " parts");
     for (const auto& p : parts)
         if (p.empty()) throw ConfigError(file, 0, path, "--set has an empty key segment");
 

@@ -87,8 +87,8 @@ static void write_albedo(const ResultCase& first, const ExportOptions& o, std::o
         for (int k = 0; k < 4; ++k) {
             const bool present = k < 3 || c.transmits;
             const std::string name = std::string(orders[k]) + "_albedo";
-            values.push_back(present ? c.read(name) : std::vector<double>{});
-            errors.push_back(present ? c.read(name + "_stderr") : std::vector<double>{});
+            values.push_back(present ? c.read_albedo(name) : std::vector<double>{});
+            errors.push_back(present ? c.read_albedo(name + "_stderr") : std::vector<double>{});
         }
         const size_t nt = c.theta_i_deg.size(), np = c.phi_i_deg.size(), C = size_t(c.channels);
         for (size_t ti = 0; ti < nt; ++ti)

@@ -1,5 +1,7 @@
 #include "gonio/export/atomic_output.h"
 
+#include "core/output_files.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -8,9 +10,11 @@
 namespace gonio {
 
 AtomicOutput::AtomicOutput(std::string path, bool overwrite, bool binary)
-    : path_(std::move(path)), tmp_(path_ + ".tmp-" + std::to_string(::getpid())) {
+    : path_(std::move(path)), tmp_(temporary_name(path_)) {
+    if (std::filesystem::is_directory(path_)) throw std::runtime_error(path_ + ": is a directory");
     if (!overwrite && std::filesystem::exists(path_))
         throw std::runtime_error(path_ + ": exists; pass --overwrite to replace it");
+    remove_stale_temporaries(path_);
     out_.open(tmp_, binary ? std::ios::binary | std::ios::trunc : std::ios::trunc);
     if (!out_) throw std::runtime_error(tmp_ + ": cannot create");
 }

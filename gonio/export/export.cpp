@@ -1,5 +1,6 @@
 #include "gonio/export/export.h"
 
+#include "core/output_files.h"
 #include "core/registry.h"
 #include "gonio/export/atomic_output.h"
 #include "gonio/export/export_formats.h"
@@ -13,6 +14,19 @@ const std::vector<const ExportFormat*>& export_formats() {
     static const std::vector<const ExportFormat*> formats{&rgl_format(), &merl_format(),
                                                           &astm_format(), &albedo_format()};
     return formats;
+}
+
+void check_export_options(const ExportOptions& o) {
+    if (!o.format) throw std::invalid_argument("no format (--format)");
+    if (o.output.empty()) throw std::invalid_argument("no output file (-o)");
+    if (same_file(o.output, o.input))
+        throw std::invalid_argument(o.output + ": the output is the input");
+    if (o.rgb && !o.format->rgb_option)
+        throw std::invalid_argument("--rgb does not apply to the " + std::string(o.format->name) +
+                                    " format");
+    if (!o.sweep.empty() && !o.format->sweep_option)
+        throw std::invalid_argument("--sweep does not apply to the " + std::string(o.format->name) +
+                                    " format");
 }
 
 const ExportFormat& export_format_named(const std::string& name) {
@@ -62,14 +76,8 @@ BsdfTable load_table(const ResultCase& c, TableOrder order, const std::string& f
 
 ExportReport export_result(const ExportOptions& o) {
     const auto start = std::chrono::steady_clock::now();
-    if (!o.format) throw ExportRefused("no format (--format)");
+    check_export_options(o); // (the command line checks them first, as usage errors)
     const ExportFormat& format = *o.format;
-    if (o.output.empty()) throw ExportRefused("no output file (-o)");
-    if (o.rgb && !format.rgb_option)
-        throw ExportRefused("--rgb does not apply to the " + std::string(format.name) + " format");
-    if (!o.sweep.empty() && !format.sweep_option)
-        throw ExportRefused("--sweep does not apply to the " + std::string(format.name) +
-                            " format");
     // With --sweep the albedo table reads every case; the first one stands for the file here.
     const ResultCase c = read_result_case(
         o.input, o.sweep.empty() ? o.case_name : [&] {

@@ -64,7 +64,11 @@ const ExportFormat& merl_format();
 const ExportFormat& astm_format();
 const ExportFormat& albedo_format();
 
-// Throws ExportRefused (what the format cannot hold) or std::runtime_error (unreadable input).
+// Throws std::invalid_argument for options that do not go together (no format or output, the
+// output the input, --rgb or --sweep with a format without them).
+void check_export_options(const ExportOptions& options);
+// Throws ExportRefused (what the format cannot hold), std::invalid_argument (the options, as
+// above) or std::runtime_error (an unreadable or corrupt input, naming it).
 ExportReport export_result(const ExportOptions& options);
 
 } // namespace gonio

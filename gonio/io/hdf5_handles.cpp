@@ -2,11 +2,37 @@
 
 #include <hdf5_hl.h>
 #include <stdexcept>
+#include <unistd.h>
 
 namespace gonio::h5 {
 
+namespace {
+// The innermost entry of HDF5's error stack, where the failure was first detected.
+herr_t innermost(unsigned n, const H5E_error2_t* e, void* out) {
+    if (n == 0 && e->desc) *static_cast<std::string*>(out) = e->desc;
+    return 0;
+}
+
+std::string failure(const std::string& what) {
+    const std::string why = reason();
+    return "HDF5: " + what + " failed" + (why.empty() ? "" : " (" + why + ")");
+}
+} // namespace
+
+std::string reason() {
+    std::string desc;
+    H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, innermost, &desc);
+    // A system call's failure carries the system's words: "error message = 'No space left ...'".
+    const std::string tag = "error message = '";
+    if (const size_t at = desc.find(tag); at != std::string::npos) {
+        const size_t from = at + tag.size(), to = desc.find('\'', from);
+        return desc.substr(from, to == std::string::npos ? std::string::npos : to - from);
+    }
+    return desc.size() > 200 ? desc.substr(0, 200) + "..." : desc;
+}
+
 Handle::Handle(hid_t id, Closer closer, const char* what) : id_(id), closer_(closer) {
-    if (id < 0) throw std::runtime_error(std::string("HDF5: ") + what + " failed");
+    if (id < 0) throw std::runtime_error(failure(what));
 }
 
 Handle& Handle::operator=(Handle&& o) noexcept {
@@ -24,12 +50,20 @@ void Handle::reset() {
     id_ = -1;
 }
 
+void discard_file(hid_t file) {
+    if (file < 0) return;
+    void* fd = nullptr;
+    if (H5Fget_vfd_handle(file, H5P_DEFAULT, &fd) >= 0 && fd) [[maybe_unused]]
+        const int ignored = ::ftruncate(*static_cast<int*>(fd), 0);
+    if (H5Fclose(file) < 0) H5Fclose(file); // the flush failed once: it has room now
+}
+
 void silence_errors() {
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
 }
 
 void check(herr_t status, const char* what) {
-    if (status < 0) throw std::runtime_error(std::string("HDF5: ") + what + " failed");
+    if (status < 0) throw std::runtime_error(failure(what));
 }
 
 namespace {

@@ -20,6 +20,8 @@ class Handle {
     hid_t get() const { return id_; }
     operator hid_t() const { return id_; }
     void reset();
+    // Gives the id up without closing it (the caller closed it and checks the result).
+    void release() { id_ = -1; }
 
   private:
     hid_t id_ = -1;
@@ -28,7 +30,15 @@ class Handle {
 
 // Silences HDF5's own error printing: gonio reports errors itself.
 void silence_errors();
+// Throws std::runtime_error "HDF5: <what> failed (<reason>)" when status < 0.
 void check(herr_t status, const char* what);
+// Closes a file that is being thrown away (a write failed): its data are truncated first, so
+// that the close's own flush has room even on a full disk. (A file whose close failed stays open
+// in HDF5 1.10, whose exit handler then crashes closing it again.)
+void discard_file(hid_t file);
+// Why the last HDF5 call failed, in the system's words where a system call failed ("No space
+// left on device"), else HDF5's innermost description; "" when unknown.
+std::string reason();
 
 // Attributes (replaced if they exist). Strings are variable-length UTF-8; a list of strings is
 // a 1-D array of them.

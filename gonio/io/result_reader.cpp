@@ -2,6 +2,7 @@
 
 #include "gonio/io/hdf5_handles.h"
 
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 
@@ -68,6 +69,113 @@ std::vector<std::pair<std::string, double>> timings(hid_t object) {
     return out;
 }
 
+// Refusals name the dataset; read_result_summary adds the file.
+[[noreturn]] void bad(const std::string& what) {
+    throw std::runtime_error(what);
+}
+
+// An axis of the sweep or the sensor: 1-D, not empty, finite, increasing within [lo, hi].
+std::vector<double> read_axis(hid_t group, const std::string& name, double lo, double hi,
+                              bool increasing) {
+    if (H5Lexists(group, name.c_str(), H5P_DEFAULT) <= 0) bad("no dataset " + name);
+    std::vector<hsize_t> dims;
+    std::vector<double> v = h5::read_doubles(group, name, &dims);
+    if (dims.size() != 1 || v.empty()) bad(name + ": expected a non-empty 1-D axis");
+    for (size_t k = 0; k < v.size(); ++k) {
+        if (!std::isfinite(v[k]) || v[k] < lo || v[k] > hi)
+            bad(name + ": value " + std::to_string(v[k]) + " outside [" + std::to_string(lo) +
+                ", " + std::to_string(hi) + "]");
+        if (increasing && k > 0 && !(v[k] > v[k - 1])) bad(name + ": not increasing");
+    }
+    return v;
+}
+
+// What a per-incidence dataset may hold, by its name: a fraction of the incident power (energies,
+// albedos, the ledger) is finite and in [0, 1]; a BRDF, a model's map, an error or a count is
+// finite and not negative; the ledger's unaccounted part and the achieved error are finite; a
+// comparison with a model (infinite where the model is 0), a share or a time is not checked.
+enum class Values { unchecked, finite, non_negative, fraction };
+Values values_of(const std::string& name) {
+    const auto has = [&](const char* part) { return name.find(part) != std::string::npos; };
+    const auto starts = [&](const char* head) { return name.rfind(head, 0) == 0; };
+    const auto ends = [&](const std::string& t) {
+        return name.size() >= t.size() && name.compare(name.size() - t.size(), t.size(), t) == 0;
+    };
+    if (ends("_seconds") || has("_relative_difference") || has("_sigmas") || has("_distance") ||
+        has("_ratio") || starts("surface_share_"))
+        return Values::unchecked;
+    if (name == "ledger_unaccounted" || name == "achieved_error") return Values::finite;
+    if (ends("_stderr") || starts("model_") || starts("brdf") || starts("btdf") || name == "rays" ||
+        name == "segments" || name == "rounds" || name == "realisations")
+        return Values::non_negative;
+    if (ends("_albedo") || starts("ledger_") || ends("energy")) return Values::fraction;
+    return Values::finite;
+}
+
+void check_values(const std::string& name, const std::vector<double>& v) {
+    const Values rule = values_of(name);
+    if (rule == Values::unchecked) return;
+    for (double x : v) {
+        if (!std::isfinite(x)) bad(name + ": holds NaN or an infinite value");
+        if (rule != Values::finite && x < -1e-9)
+            bad(name + ": holds a negative value (" + std::to_string(x) + ")");
+        if (rule == Values::fraction && x > 1 + 1e-6)
+            bad(name + ": a fraction of the incident power above 1 (" + std::to_string(x) + ")");
+    }
+}
+
+// One case's group: its axes checked, every per-incidence dataset's shape checked against them.
+CaseSummary read_case(hid_t file, const std::string& name) {
+    if (H5Lexists(file, name.c_str(), H5P_DEFAULT) <= 0)
+        bad("case " + name + " is listed in the file's `cases` but its group is missing");
+    h5::Handle group(H5Gopen2(file, name.c_str(), H5P_DEFAULT), H5Gclose, "open group");
+    CaseSummary c;
+    c.name = name;
+    c.attributes = string_attributes(group);
+    c.models = list(group, "models");
+    c.stop = list(group, "stop");
+    c.timings = timings(group);
+    c.theta_i_deg = read_axis(group, "theta_i", 0, 90, true);
+    c.phi_i_deg = read_axis(group, "phi_i", 0, 360, true);
+    c.cells = static_cast<int>(read_axis(group, "cell", 0, 1e9, true).size());
+    c.channels = static_cast<int>(read_axis(group, "channel", 0, 1e9, true).size());
+    if (H5Lexists(group, "wavelength", H5P_DEFAULT) > 0)
+        c.wavelength_nm = read_axis(group, "wavelength", 1, 1e6, false);
+    if (c.channels > 1 && c.wavelength_nm.size() != size_t(c.channels))
+        bad("wavelength: " + std::to_string(c.wavelength_nm.size()) + " wavelengths for " +
+            std::to_string(c.channels) + " channels");
+    const hsize_t nt = c.theta_i_deg.size(), np = c.phi_i_deg.size();
+    for (const std::string& ds : children(group, H5O_TYPE_DATASET)) {
+        std::vector<hsize_t> dims;
+        {
+            h5::Handle d(H5Dopen2(group, ds.c_str(), H5P_DEFAULT), H5Dclose, "open dataset");
+            h5::Handle space(H5Dget_space(d), H5Sclose, "dataspace");
+            const int rank = H5Sget_simple_extent_ndims(space);
+            if (rank < 2 || rank > 5) continue; // an axis or a cell coordinate
+            dims.resize(size_t(rank));
+            H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+        }
+        if (dims[0] != nt || dims[1] != np)
+            bad(ds + ": shaped " + std::to_string(dims[0]) + " x " + std::to_string(dims[1]) +
+                " ... for a sweep of " + std::to_string(nt) + " theta_i x " + std::to_string(np) +
+                " phi_i");
+        if (dims.size() >= 3 && dims.back() != hsize_t(c.channels))
+            bad(ds + ": " + std::to_string(dims.back()) + " channels, the case " +
+                std::to_string(c.channels));
+        // Every quantity is read and checked (maps too: an export or a render reads them).
+        std::vector<double> v = h5::read_doubles(group, ds);
+        check_values(ds, v);
+        if (dims.size() == 3)
+            c.albedos[ds] = std::move(v);
+        else if (dims.size() == 2)
+            c.runs[ds] = std::move(v);
+    }
+    if (!c.stop.empty() && c.stop.size() != nt * np)
+        bad("the attribute stop lists " + std::to_string(c.stop.size()) + " incidences of " +
+            std::to_string(nt * np));
+    return c;
+}
+
 } // namespace
 
 ResultSummary read_result_summary(const std::string& path) {
@@ -89,42 +197,19 @@ ResultSummary read_result_summary(const std::string& path) {
     else
         throw std::runtime_error(path + ": unknown file format '" + format->second +
                                  "' (this gonio reads gonio-result 1 and 2)");
-    s.timings = timings(file);
-    {
-        h5::Handle attr(H5Aopen(file, "seed", H5P_DEFAULT), H5Aclose, "open seed");
-        h5::check(H5Aread(attr, H5T_NATIVE_LLONG, &s.seed), "read seed");
-    }
-    for (const std::string& name : children(file, H5O_TYPE_GROUP)) {
-        h5::Handle group(H5Gopen2(file, name.c_str(), H5P_DEFAULT), H5Gclose, "open group");
-        CaseSummary c;
-        c.name = name;
-        c.attributes = string_attributes(group);
-        c.models = list(group, "models");
-        c.stop = list(group, "stop");
-        c.timings = timings(group);
-        c.theta_i_deg = h5::read_doubles(group, "theta_i");
-        c.phi_i_deg = h5::read_doubles(group, "phi_i");
-        c.cells = static_cast<int>(h5::read_doubles(group, "cell").size());
-        c.channels = static_cast<int>(h5::read_doubles(group, "channel").size());
-        if (H5Lexists(group, "wavelength", H5P_DEFAULT) > 0)
-            c.wavelength_nm = h5::read_doubles(group, "wavelength");
-        for (const std::string& ds : children(group, H5O_TYPE_DATASET)) {
-            std::vector<hsize_t> dims;
-            {
-                h5::Handle d(H5Dopen2(group, ds.c_str(), H5P_DEFAULT), H5Dclose, "open dataset");
-                h5::Handle space(H5Dget_space(d), H5Sclose, "dataspace");
-                const int rank = H5Sget_simple_extent_ndims(space);
-                if (rank != 2 && rank != 3) continue;
-                dims.resize(size_t(rank));
-                H5Sget_simple_extent_dims(space, dims.data(), nullptr);
-            }
-            if (dims[0] != c.theta_i_deg.size() || dims[1] != c.phi_i_deg.size()) continue;
-            if (dims.size() == 3 && dims[2] == hsize_t(c.channels))
-                c.albedos[ds] = h5::read_doubles(group, ds);
-            else if (dims.size() == 2)
-                c.runs[ds] = h5::read_doubles(group, ds);
+    try {
+        s.timings = timings(file);
+        if (H5Aexists(file, "seed") <= 0) bad("no seed attribute");
+        {
+            h5::Handle attr(H5Aopen(file, "seed", H5P_DEFAULT), H5Aclose, "open attribute seed");
+            h5::check(H5Aread(attr, H5T_NATIVE_LLONG, &s.seed), "read attribute seed");
         }
-        s.cases.push_back(std::move(c));
+        // The cases the file lists, in order (a file without the list: its groups).
+        std::vector<std::string> names = list(file, "cases");
+        if (H5Aexists(file, "cases") <= 0) names = children(file, H5O_TYPE_GROUP);
+        for (const std::string& name : names) s.cases.push_back(read_case(file, name));
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": " + e.what());
     }
     return s;
 }

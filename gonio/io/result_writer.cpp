@@ -1,6 +1,7 @@
 #include "gonio/io/result_writer.h"
 
 #include "core/check.h"
+#include "core/output_files.h"
 #include "gonio_version.h"
 
 #include <cstdio>
@@ -41,18 +42,26 @@ ResultWriter::ResultWriter(std::string path, bool overwrite) : path_(std::move(p
     h5::silence_errors();
     if (!overwrite && std::filesystem::exists(path_))
         throw std::runtime_error(path_ + ": exists; pass --overwrite to replace it");
-    tmp_path_ = path_ + ".tmp-" + std::to_string(::getpid());
-    // Track link creation order so readers list the cases in config order, not by name.
-    h5::Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "file creation property list");
-    h5::check(H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
-              "H5Pset_link_creation_order");
-    file_ = h5::Handle(H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT), H5Fclose,
-                       ("create " + tmp_path_).c_str());
+    if (std::filesystem::is_directory(path_))
+        throw std::runtime_error(path_ + ": is a directory, not a result file");
+    remove_stale_temporaries(path_); // of gonio processes that were killed writing it
+    tmp_path_ = temporary_name(path_);
+    try {
+        // Track link creation order so readers list the cases in config order, not by name.
+        h5::Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "file creation property list");
+        h5::check(H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
+                  "H5Pset_link_creation_order");
+        file_ = h5::Handle(H5Fcreate(tmp_path_.c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT), H5Fclose,
+                           "create the file");
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path_ + ": " + e.what());
+    }
 }
 
 ResultWriter::~ResultWriter() {
     if (!committed_) {
-        file_.reset();
+        h5::discard_file(file_.get());
+        file_.release();
         std::remove(tmp_path_.c_str());
     }
 }
@@ -348,12 +357,12 @@ void ResultWriter::write_timings(const std::string& case_name_or_empty,
 
 void ResultWriter::commit() {
     h5::check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flush");
-    file_.reset();
+    const herr_t closed = H5Fclose(file_.get());
+    file_.release();
+    h5::check(closed, "close");
     std::error_code ec;
     std::filesystem::rename(tmp_path_, path_, ec);
-    if (ec)
-        throw std::runtime_error("cannot rename " + tmp_path_ + " to " + path_ + ": " +
-                                 ec.message());
+    if (ec) throw std::runtime_error("cannot rename " + tmp_path_ + " to it: " + ec.message());
     committed_ = true;
 }
 

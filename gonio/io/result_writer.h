@@ -6,6 +6,7 @@
 // config, program version, git hash, seed and command line are stored in the root attributes.
 // The writer only serialises: every figure comes computed, as named arrays. The file is written
 // under a temporary name and renamed when complete, so a failed run leaves nothing half-written.
+// Its methods' errors do not name the file: the caller does (write_result).
 #include "gonio/config/config.h"
 #include "gonio/io/hdf5_handles.h"
 #include "gonio/io/model_result.h"
@@ -47,6 +48,7 @@ class ResultWriter {
                        const std::vector<std::pair<std::string, double>>& phase_seconds);
     // Closes the file and renames it to its final path.
     void commit();
+    const std::string& path() const { return path_; }
 
     static std::string conventions();
 

@@ -40,12 +40,10 @@ RunResult run_local(const Config& cfg, const RunOptions& options, const Checkpoi
         context.observer.resumed((long long)resumed.size(), layout.total());
     for (NumberedUnit& u : resumed) assembly.add(u.id, std::move(u.result));
     resumed.clear();
-    long long added = 0;
     auto sink = [&](const UnitId& id, UnitResult&& u) {
         if (file) { // first kept, then folded in (which frees its batches)
             ScopedPhase t(assembly.phases(id.case_index), Phase::checkpoint);
             file->add({layout.number(id), id, u});
-            ++added;
         }
         assembly.add(id, std::move(u));
     };
@@ -54,10 +52,12 @@ RunResult run_local(const Config& cfg, const RunOptions& options, const Checkpoi
             cfg, context, [&](const UnitId& id) { return !assembly.has(id); }, true,
             [&](size_t ci) -> PhaseTimes& { return assembly.phases(ci); }, sink);
     } catch (const Interrupted&) {
-        throw;      // the checkpoint holds every finished unit
-    } catch (...) { // a failure before any unit leaves no checkpoint to trip over
-        if (file) file->close();
-        if (file && added == 0 && !checkpoint.resume) std::filesystem::remove(checkpoint.path);
+        throw;      // the checkpoint holds every finished unit: `--resume` continues
+    } catch (...) { // a failure leaves nothing behind: a checkpoint it created goes
+        if (file && !checkpoint.resume)
+            file->discard();
+        else if (file)
+            file->close();
         throw;
     }
     if (file) file->close();

@@ -1,6 +1,7 @@
 // run_mpi (run.h): under mpirun, every rank computes its share of the units and rank 0
 // assembles the result.
 #include "core/float_mode.h"
+#include "gonio/run/memory_estimate.h"
 #include "gonio/run/mpi_job.h"
 #include "gonio/run/run_assembly.h"
 #include "gonio/run/unit_file.h"
@@ -17,6 +18,7 @@ std::optional<RunResult> run_mpi(const Config& cfg, const RunOptions& options) {
         throw std::runtime_error("the ranks of an MPI job share their surfaces through the "
                                  "cache, which is disabled");
     const RunContext context = run_context(options);
+    check_memory(cfg, true);
     // Every surface made once, the k-th (case, realisation) by rank k mod K, and shared through
     // the cache: the ranks then load what they trace.
     long long k = 0;

@@ -4,7 +4,8 @@
 
 namespace gonio {
 
-void write_result(const RunResult& r, ResultWriter& writer) {
+namespace {
+void write_all(const RunResult& r, ResultWriter& writer) {
     auto t = PhaseTimes::Clock::now();
     PhaseTimes run = r.phases;
     writer.write_run(r.config, r.command_line);
@@ -31,6 +32,15 @@ void write_result(const RunResult& r, ResultWriter& writer) {
             std::chrono::duration<double>(PhaseTimes::Clock::now() - r.started).count());
     writer.write_timings("", run.phases());
     writer.commit();
+}
+} // namespace
+
+void write_result(const RunResult& r, ResultWriter& writer) {
+    try {
+        write_all(r, writer);
+    } catch (const std::exception& e) { // the writer's errors name what failed, this the file
+        throw std::runtime_error(writer.path() + ": " + e.what());
+    }
 }
 
 void write_result_file(const RunResult& r, const std::string& path, bool overwrite) {

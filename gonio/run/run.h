@@ -61,8 +61,8 @@ struct Checkpoint {
 };
 
 // Every unit in this process. With a checkpoint, each unit is added to it as it finishes; on
-// success it is left for the caller to remove once the result is safely written; a failure
-// before any unit finished removes a checkpoint this call created.
+// success it is left for the caller to remove once the result is safely written; an interrupt
+// leaves it (to resume from), any other failure removes a checkpoint this call created.
 RunResult run_local(const Config& cfg, const RunOptions& options,
                     const Checkpoint& checkpoint = {});
 

@@ -1,5 +1,7 @@
 #include "gonio/run/run_assembly.h"
 
+#include "gonio/run/memory_estimate.h"
+
 #include <algorithm>
 
 namespace gonio {
@@ -26,6 +28,7 @@ RunContext run_context(const RunOptions& o) {
 }
 
 RunResult empty_result(const Config& cfg, const RunOptions& o, bool simulated) {
+    check_memory(cfg, simulated); // before any work: refused with the figures
     RunResult r;
     r.config = cfg;
     r.simulated = simulated;

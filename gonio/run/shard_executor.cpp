@@ -1,5 +1,7 @@
 // run_shard (run.h): the units of one shard into a part file, for merge_parts.
 #include "core/float_mode.h"
+#include "core/output_files.h"
+#include "gonio/run/memory_estimate.h"
 #include "gonio/run/run_assembly.h"
 #include "gonio/run/unit_file.h"
 
@@ -14,6 +16,7 @@ long long run_shard(const Config& cfg, const RunOptions& options, const Shard& s
                     const std::string& part) {
     const ResultFloatMode mode; // every entry point computes in one floating-point mode
     const RunContext context = run_context(options);
+    check_memory(cfg, true);
     UnitFileHeader header = run_identity(cfg, options.command_line);
     header.shard = shard.text();
     // A single-incidence job has one unit: its shards share out the batches instead (each batch
@@ -33,10 +36,12 @@ long long run_shard(const Config& cfg, const RunOptions& options, const Shard& s
         c.trace.batch_shard_count = shard.count;
     }
     const UnitLayout layout(local);
-    const std::string tmp = part + ".tmp-" + std::to_string(::getpid());
+    if (std::filesystem::is_directory(part)) throw std::runtime_error(part + ": is a directory");
+    remove_stale_temporaries(part);
+    const std::string tmp = temporary_name(part);
     long long written = 0;
+    UnitFileWriter file(tmp, header, false);
     try {
-        UnitFileWriter file(tmp, header, false);
         std::vector<PhaseTimes> phases(local.cases.size()); // not kept: a part holds data only
         compute_units(
             local, context,
@@ -49,7 +54,7 @@ long long run_shard(const Config& cfg, const RunOptions& options, const Shard& s
             });
         file.close();
     } catch (...) {
-        std::remove(tmp.c_str());
+        file.discard();
         throw;
     }
     std::error_code ec;

@@ -10,7 +10,8 @@
 namespace gonio {
 
 namespace {
-constexpr const char* kFormat = "gonio-units 2";
+// 3: every unit record checksummed (HDF5's Fletcher-32 filter, checked on every read).
+constexpr const char* kFormat = "gonio-units 3";
 
 void write_int(hid_t o, const char* name, long long v) {
     h5::write_int_attribute(o, name, v);
@@ -82,25 +83,37 @@ UnitFileWriter::~UnitFileWriter() {
 }
 
 void UnitFileWriter::close() {
-    if (file_ >= 0) H5Fclose(hid_t(file_));
+    if (file_ >= 0 && H5Fclose(hid_t(file_)) < 0)
+        h5::discard_file(hid_t(file_)); // (its last flush failed: no id may stay open)
     file_ = -1;
 }
 
-void UnitFileWriter::add(const NumberedUnit& u) {
+void UnitFileWriter::discard() {
+    h5::discard_file(hid_t(file_));
+    file_ = -1;
+    std::error_code ec;
+    std::filesystem::remove(path_, ec);
+}
+
+namespace {
+// One unit's record, checksummed and flushed (so that it survives a kill).
+void write_record(hid_t file, const NumberedUnit& u) {
     const std::vector<char> bytes = serialise(u.result);
     const std::string name = "unit_" + std::to_string(u.number);
     const hsize_t n = bytes.size();
     h5::Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose, "dataspace");
-    if (H5Lexists(hid_t(file_), name.c_str(), H5P_DEFAULT) > 0)
-        H5Ldelete(hid_t(file_), name.c_str(), H5P_DEFAULT); // a unit redone after a kill
-    // Deflated in chunks: the batches' histograms are mostly zeros beyond the first orders.
+    if (H5Lexists(file, name.c_str(), H5P_DEFAULT) > 0)
+        H5Ldelete(file, name.c_str(), H5P_DEFAULT); // a unit redone after a kill
+    // Deflated in chunks (the batches' histograms are mostly zeros beyond the first orders), each
+    // chunk with a Fletcher-32 checksum that HDF5 checks on reading: a flipped byte is refused.
     h5::Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "dataset creation property list");
-    const hsize_t chunk = std::min<hsize_t>(n, hsize_t(1) << 20);
+    const hsize_t chunk = std::min<hsize_t>(std::max<hsize_t>(n, 1), hsize_t(1) << 20);
     h5::check(H5Pset_chunk(dcpl, 1, &chunk), "H5Pset_chunk");
     h5::check(H5Pset_deflate(dcpl, 1), "H5Pset_deflate");
-    h5::Handle d(H5Dcreate2(hid_t(file_), name.c_str(), H5T_NATIVE_UINT8, space, H5P_DEFAULT, dcpl,
-                            H5P_DEFAULT),
-                 H5Dclose, ("create " + name).c_str());
+    h5::check(H5Pset_fletcher32(dcpl), "H5Pset_fletcher32");
+    h5::Handle d(
+        H5Dcreate2(file, name.c_str(), H5T_NATIVE_UINT8, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
+        H5Dclose, ("create " + name).c_str());
     h5::check(H5Dwrite(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()),
               ("write " + name).c_str());
     write_int(d, "unit", u.number);
@@ -108,18 +121,61 @@ void UnitFileWriter::add(const NumberedUnit& u) {
     write_int(d, "theta_index", (long long)u.id.theta_index);
     write_int(d, "phi_index", (long long)u.id.phi_index);
     write_int(d, "complete", 1); // last: a unit cut short by a kill is skipped on reading
-    h5::check(H5Fflush(hid_t(file_), H5F_SCOPE_GLOBAL), "flush");
+    h5::check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush");
+}
+} // namespace
+
+void UnitFileWriter::add(const NumberedUnit& u) {
+    try {
+        write_record(hid_t(file_), u);
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path_ + ": " + e.what());
+    }
 }
 
-std::vector<NumberedUnit> read_unit_file(const std::string& path, UnitFileHeader* header) {
-    h5::silence_errors();
-    if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
-    if (H5Fis_hdf5(path.c_str()) <= 0) throw std::runtime_error(path + ": not an HDF5 file");
-    h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
-                 ("open " + path).c_str());
+namespace {
+// Opens a unit file, saying so when another process holds it (HDF5 locks what it writes).
+h5::Handle open_unit_file(const std::string& path, unsigned flags) {
+    const hid_t f = H5Fopen(path.c_str(), flags, H5P_DEFAULT);
+    if (f >= 0) return h5::Handle(f, H5Fclose, "open");
+    const std::string why = h5::reason();
+    if (why.find("lock") != std::string::npos || why.find("unavailable") != std::string::npos)
+        throw std::runtime_error("in use by another process (a gonio still writing it?)");
+    throw std::runtime_error("cannot open (" + why + ")");
+}
+
+// One unit's record: a 1-D byte dataset whose checksum holds, and its place.
+NumberedUnit read_unit(hid_t f, const std::string& name) {
+    h5::Handle d(H5Dopen2(f, name.c_str(), H5P_DEFAULT), H5Dclose, ("open " + name).c_str());
+    h5::Handle space(H5Dget_space(d), H5Sclose, "dataspace");
+    h5::Handle type(H5Dget_type(d), H5Tclose, "datatype");
+    if (H5Sget_simple_extent_ndims(space) != 1 || H5Tget_class(type) != H5T_INTEGER ||
+        H5Tget_size(type) != 1)
+        throw std::runtime_error(name + ": not a unit record (a 1-D array of bytes)");
+    hsize_t n = 0;
+    H5Sget_simple_extent_dims(space, &n, nullptr);
+    std::vector<char> bytes(n);
+    if (n > 0 && H5Dread(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()) < 0)
+        throw std::runtime_error(name + ": cannot be read (" + h5::reason() +
+                                 "): the record is damaged");
+    NumberedUnit u;
+    u.number = read_int(d, "unit");
+    u.id.case_index = size_t(read_int(d, "case_index"));
+    u.id.theta_index = size_t(read_int(d, "theta_index"));
+    u.id.phi_index = size_t(read_int(d, "phi_index"));
+    try {
+        u.result = deserialise(bytes);
+    } catch (const std::exception& e) {
+        throw std::runtime_error(name + ": " + e.what());
+    }
+    return u;
+}
+
+std::vector<NumberedUnit> read_units(const std::string& path, UnitFileHeader* header) {
+    const h5::Handle f = open_unit_file(path, H5F_ACC_RDONLY);
     if (H5Aexists(f, "file_format") <= 0 || h5::read_string_attribute(f, "file_format") != kFormat)
-        throw std::runtime_error(path + ": not a gonio unit file (a part of `gonio run --shard` "
-                                        "or a checkpoint)");
+        throw std::runtime_error(std::string("not a unit file of this gonio (") + kFormat +
+                                 ": a part of `gonio run --shard` or a checkpoint)");
     UnitFileHeader h;
     h.version = h5::read_string_attribute(f, "gonio_version");
     h.git_hash = h5::read_string_attribute(f, "git_hash");
@@ -139,27 +195,30 @@ std::vector<NumberedUnit> read_unit_file(const std::string& path, UnitFileHeader
     for (hsize_t k = 0; k < info.nlinks; ++k) {
         const ssize_t len =
             H5Lget_name_by_idx(f, ".", H5_INDEX_NAME, H5_ITER_INC, k, nullptr, 0, H5P_DEFAULT);
+        if (len < 0) throw std::runtime_error("a damaged list of records");
         std::string name(size_t(len), '\0');
         H5Lget_name_by_idx(f, ".", H5_INDEX_NAME, H5_ITER_INC, k, name.data(), size_t(len) + 1,
                            H5P_DEFAULT);
         if (name.rfind("unit_", 0) != 0) continue;
-        h5::Handle d(H5Dopen2(f, name.c_str(), H5P_DEFAULT), H5Dclose, name.c_str());
-        if (H5Aexists(d, "complete") <= 0) continue; // written when the process was killed
-        h5::Handle space(H5Dget_space(d), H5Sclose, "dataspace");
-        hsize_t n = 0;
-        H5Sget_simple_extent_dims(space, &n, nullptr);
-        std::vector<char> bytes(n);
-        h5::check(H5Dread(d, H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()),
-                  ("read " + name).c_str());
-        NumberedUnit u;
-        u.number = read_int(d, "unit");
-        u.id.case_index = size_t(read_int(d, "case_index"));
-        u.id.theta_index = size_t(read_int(d, "theta_index"));
-        u.id.phi_index = size_t(read_int(d, "phi_index"));
-        u.result = deserialise(bytes);
-        units.push_back(std::move(u));
+        {
+            h5::Handle d(H5Dopen2(f, name.c_str(), H5P_DEFAULT), H5Dclose, name.c_str());
+            if (H5Aexists(d, "complete") <= 0) continue; // written when the process was killed
+        }
+        units.push_back(read_unit(f, name));
     }
     return units;
+}
+} // namespace
+
+std::vector<NumberedUnit> read_unit_file(const std::string& path, UnitFileHeader* header) {
+    h5::silence_errors();
+    if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
+    if (H5Fis_hdf5(path.c_str()) <= 0) throw std::runtime_error(path + ": not an HDF5 file");
+    try {
+        return read_units(path, header);
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": " + e.what());
+    }
 }
 
 namespace {

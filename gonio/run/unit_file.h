@@ -35,6 +35,8 @@ class UnitFileWriter {
     // Adds a unit and flushes the file, so that it survives a kill.
     void add(const NumberedUnit& u);
     void close();
+    // Closes and removes the file (a run that failed leaves no unit file behind).
+    void discard();
 
   private:
     std::string path_;

@@ -36,9 +36,9 @@ TableData table_data(const ResultCase& c, TableOrder order) {
     d.phi_i_deg = c.phi_i_deg;
     d.cells = c.cells;
     d.channels = c.channels;
-    d.f = c.read(f);
-    d.f_stderr = c.read(std::string(f) + "_stderr");
-    d.albedo_stderr = c.read(std::string(albedo) + "_stderr");
+    d.f = c.read_map(f);
+    d.f_stderr = c.read_map(std::string(f) + "_stderr");
+    d.albedo_stderr = c.read_albedo(std::string(albedo) + "_stderr");
     d.isotropic = c.isotropic;
     d.transmission = order == TableOrder::transmission;
     return d;
@@ -53,7 +53,7 @@ TableData model_table_data(const ResultCase& c, const std::string& model) {
     d.phi_i_deg = c.phi_i_deg;
     d.cells = c.cells;
     d.channels = c.channels;
-    d.f = c.read(name);
+    d.f = c.read_map(name);
     d.isotropic = c.isotropic;
     return d;
 }

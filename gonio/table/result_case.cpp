@@ -59,10 +59,11 @@ ResultCase read_result_case(const std::string& file, const std::string& name) {
     r.effective_toml = effective->second;
     Config cfg;
     try {
-        cfg = parse_config(effective->second,
-                           config_path != summary.attributes.end()
-                               ? config_path->second + " (as stored in " + file + ")"
-                               : file);
+        // Under its own path: a lone case is named after the config file's stem (and renamed
+        // after its group below), whatever the result file is called.
+        cfg = parse_config(effective->second, config_path != summary.attributes.end()
+                                                  ? config_path->second
+                                                  : std::string("config.toml"));
     } catch (const std::exception& e) {
         throw std::runtime_error(file + ": cannot re-read the config it stores: " + e.what());
     }
@@ -104,12 +105,39 @@ bool ResultCase::has(const std::string& dataset) const {
     return H5Lexists(g, dataset.c_str(), H5P_DEFAULT) > 0;
 }
 
-std::vector<double> ResultCase::read(const std::string& dataset) const {
+namespace {
+std::vector<double> read_checked(const ResultCase& c, const std::string& dataset,
+                                 const std::vector<hsize_t>& shape) {
     h5::Handle f;
-    const h5::Handle g = open_group(file, name, f);
+    const h5::Handle g = open_group(c.file, c.name, f);
+    const std::string where = c.file + ": case " + c.name + ": ";
     if (H5Lexists(g, dataset.c_str(), H5P_DEFAULT) <= 0)
-        throw std::runtime_error(file + ": case " + name + " has no dataset " + dataset);
-    return h5::read_doubles(g, dataset);
+        throw std::runtime_error(where + "no dataset " + dataset);
+    std::vector<hsize_t> dims;
+    std::vector<double> v = h5::read_doubles(g, dataset, &dims);
+    if (dims != shape) {
+        std::string got, want;
+        for (hsize_t d : dims) got += (got.empty() ? "" : " x ") + std::to_string(d);
+        for (hsize_t d : shape) want += (want.empty() ? "" : " x ") + std::to_string(d);
+        throw std::runtime_error(where + dataset + ": shaped " + got + ", the case's axes give " +
+                                 want);
+    }
+    for (double x : v)
+        if (!std::isfinite(x) || x < 0)
+            throw std::runtime_error(where + dataset + ": holds " + std::to_string(x) +
+                                     " (a BRDF, an albedo or an error is finite and not "
+                                     "negative)");
+    return v;
+}
+} // namespace
+
+std::vector<double> ResultCase::read_map(const std::string& dataset) const {
+    return read_checked(*this, dataset,
+                        {theta_i_deg.size(), phi_i_deg.size(), hsize_t(cells), hsize_t(channels)});
+}
+
+std::vector<double> ResultCase::read_albedo(const std::string& dataset) const {
+    return read_checked(*this, dataset, {theta_i_deg.size(), phi_i_deg.size(), hsize_t(channels)});
 }
 
 } // namespace gonio

@@ -21,8 +21,12 @@ struct ResultCase {
     bool isotropic = false; // case_is_isotropic(config)
 
     bool has(const std::string& dataset) const;
-    // A dataset of the case's group, row-major; throws std::runtime_error naming file and dataset.
-    std::vector<double> read(const std::string& dataset) const;
+    // A per-cell map [theta_i][phi_i][cell][channel] or a per-incidence quantity
+    // [theta_i][phi_i][channel] of the case's group, row-major, checked against the case's axes
+    // and for values a BRDF, an albedo or an error can hold (finite, not negative); throws
+    // std::runtime_error naming the file, the dataset and what is wrong.
+    std::vector<double> read_map(const std::string& dataset) const;
+    std::vector<double> read_albedo(const std::string& dataset) const;
 };
 
 // The case `name` of `file`, or its only case when `name` is empty. Throws std::runtime_error

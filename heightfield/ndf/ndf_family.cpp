@@ -1,6 +1,7 @@
 #include "heightfield/ndf/ndf_family.h"
 
 #include "core/config_error.h"
+#include "core/toml_limits.h"
 
 #include <stdexcept>
 #include <toml++/toml.h>
@@ -62,6 +63,8 @@ std::unique_ptr<Ndf> read_ndf(TableReader r, int depth, const NdfFamily** family
 }
 
 std::unique_ptr<Ndf> ndf_from_toml(const std::string& table_text) {
+    if (const std::string why = toml_limits_problem(table_text); !why.empty())
+        throw ConfigError("<ndf>", -1, "", why);
     toml::table t;
     try {
         t = toml::parse(table_text, std::string("<ndf>"));
