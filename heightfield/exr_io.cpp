@@ -66,13 +66,14 @@ void write_channels_exr(const std::string& path, int width, int height,
 void write_height_exr(const std::string& path, const HeightField& s, const ExrAttributes& attrs) {
     ExrAttributes all = attrs;
     all.numbers["gonio_spacing"] = s.spacing;
-    all.text["gonio_heights_crc32"] = heights_checksum(s.h); // checked when the map is read
+    all.text["gonio_heights_crc32"] = heights_checksum(s); // checked when the map is read
     write_channels_exr(path, s.n, s.n, {"Y"}, {s.h}, all);
 }
 
-std::string heights_checksum(const std::vector<float>& h) {
-    const uLong crc = crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(h.data()),
-                            uInt(h.size() * sizeof(float)));
+std::string heights_checksum(const HeightField& s) {
+    uLong crc = crc32(0L, Z_NULL, 0);
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(s.h.data()), uInt(s.h.size() * sizeof(float)));
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(&s.spacing), uInt(sizeof(double)));
     char text[16];
     std::snprintf(text, sizeof text, "%08lx", static_cast<unsigned long>(crc));
     return text;
@@ -167,8 +168,18 @@ HeightField read_height_exr(const std::string& path, ExrAttributes* attrs) {
         if (attrs) *attrs = read;
         if (!(s.spacing > 0) || !std::isfinite(s.spacing))
             throw std::runtime_error("gonio_spacing must be finite and > 0");
-        if (read.text.count("gonio_heights_crc32") &&
-            read.text["gonio_heights_crc32"] != heights_checksum(s.h))
+        // A map gonio wrote (attributes gonio_* other than the spacing anyone may give) carries
+        // its heights' checksum; one whose checksum is missing or wrong is damaged.
+        bool gonio_wrote = false;
+        for (const auto& [k, v] : read.text) gonio_wrote = gonio_wrote || k.rfind("gonio_", 0) == 0;
+        for (const auto& [k, v] : read.numbers)
+            gonio_wrote = gonio_wrote || (k.rfind("gonio_", 0) == 0 && k != "gonio_spacing");
+        const auto crc = read.text.find("gonio_heights_crc32");
+        if (gonio_wrote && crc == read.text.end())
+            throw std::runtime_error("a map gonio wrote, without the checksum of its heights "
+                                     "(damaged, or written before maps carried one: make it "
+                                     "again with gonio surface)");
+        if (gonio_wrote && crc->second != heights_checksum(s))
             throw std::runtime_error("its heights do not match the checksum gonio wrote with them "
                                      "(the file is damaged)");
         if (const std::string why = height_map_problem(s); !why.empty())

@@ -30,8 +30,8 @@ inline constexpr double kMaxReliefOverPeriod = 100;
 // What makes a height map no surface to trace (not finite, a relief absurd for its size, heights
 // far from 0), or "".
 std::string height_map_problem(const HeightField& surface);
-// The CRC-32 (zlib) of the heights' bytes, as gonio stores it with the maps it writes.
-std::string heights_checksum(const std::vector<float>& heights);
+// The CRC-32 (zlib) of the heights' and the spacing's bytes, as gonio stores it with its maps.
+std::string heights_checksum(const HeightField& surface);
 
 // A multi-channel float image (e.g. measured vs target NDF maps), channels named in `names`,
 // each width*height values row-major.

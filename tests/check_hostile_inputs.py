@@ -114,7 +114,15 @@ class Hostile:
             raise Failure(f"{d}: holds {names}, expected {sorted(expected)}")
 
 
-def mutate_h5(path, edit):
+def mutate_h5(path, edit, keep_file_checksum=False):
+    """Edits a file through HDF5. gonio's files carry a checksum of all their bytes, which any
+    edit breaks (and gonio then refuses the file as changed); to reach the checks of the content
+    behind it, the checksum is blanked first, as if the file came from an older gonio."""
+    if not keep_file_checksum:
+        with open(path, "r+b") as f:
+            if f.read(16) == b"gonio file crc32":
+                f.seek(0)
+                f.write(bytes(32))
     with h5py.File(path, "a") as f:
         edit(f)
 
@@ -221,17 +229,30 @@ def shapes_against_axes(h):
     h.left(d, "small.h5")
 
 
+def file_checksums(h):
+    d = h.fresh("file_checksums")
+    h.copy("small.h5", d)
+    path = os.path.join(d, "small.h5")
+    mutate_h5(path, lambda f: f["gold"].attrs.__setitem__("material", "not gold"),
+              keep_file_checksum=True)
+    h.refused(["info", "small.h5"], d, 1, "small.h5", "checksum")
+    with open(path, "r+b") as f:
+        f.seek(os.path.getsize(path) // 2)
+        f.write(b"\xff" * 16)
+    h.refused(["export", "small.h5", "--format", "astm", "-o", "x.astm"], d, 1, "small.h5",
+              "checksum")
+    h.left(d, "small.h5")
+
+
 def unit_checksums(h):
     d = h.fresh("unit_checksums")
     for i in range(2):
         h.copy(f"part{i}.h5", d)
     path = os.path.join(d, "part1.h5")
-    with h5py.File(path, "r") as f:
+    mutate_h5(path, lambda f: None)  # the file's own checksum blanked: the record's is left
+    with h5py.File(path, "r") as f:  # (HDF5's addresses count from after the user block)
         name = sorted(k for k in f if k.startswith("unit_"))[0]
-        offset = f[name].id.get_offset()
-    if offset is None:  # chunked: find the unit's first chunk
-        with h5py.File(path, "r") as f:
-            offset = f[name].id.get_chunk_info(0).byte_offset
+        offset = f.userblock_size + f[name].id.get_chunk_info(0).byte_offset
     with open(path, "r+b") as f:
         f.seek(offset + 40)
         b = f.read(1)
@@ -468,7 +489,8 @@ def output_is_the_input(h):
 
 
 CASES = [astm_without_wavelength, albedo_without_incidences, unit_of_rank_two,
-         render_light_not_finite, deep_config, full_disk, shapes_against_axes, unit_checksums,
+         render_light_not_finite, deep_config, full_disk, shapes_against_axes, file_checksums,
+         unit_checksums,
          impossible_values, missing_case_group, grazing_beam, absurd_height_map,
          render_all_or_nothing, surface_all_or_nothing, output_is_a_directory, dot_case_names,
          stale_temporaries, names_with_spaces, corrupt_inputs_are_failures,

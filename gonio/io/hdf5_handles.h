@@ -57,6 +57,13 @@ std::vector<std::string> read_string_list_attribute(hid_t object, const std::str
 bool attribute_is_array(hid_t object, const std::string& name);
 double read_double_attribute(hid_t object, const std::string& name);
 
+// Dataset creation properties: chunked as `chunk` (at least 1 per axis), each chunk with a
+// Fletcher-32 checksum HDF5 checks on reading.
+Handle checksummed(const std::vector<hsize_t>& chunk);
+// File access properties of the files gonio writes: object format of HDF5 1.8 and later, whose
+// object headers, attributes included, carry checksums (h5py and xarray read them as any).
+Handle checksummed_file_access();
+
 // A 1-D coordinate, float64 (or int32 when `integer`), made the dimension scale named `name`.
 Handle write_scale(hid_t group, const std::string& name, const std::vector<double>& values,
                    const std::string& units, const std::string& long_name, bool integer = false);
@@ -66,7 +73,30 @@ Handle write_dataset(hid_t group, const std::string& name, const std::vector<hsi
                      const std::vector<hsize_t>& chunk, const double* data,
                      const std::string& units, const std::string& long_name);
 
+// A dataset's values as doubles; one gonio wrote is checked against the checksum of its values
+// it stored (attribute gonio_crc32), so that a changed or damaged dataset is refused by name.
 std::vector<double> read_doubles(hid_t group, const std::string& name,
                                  std::vector<hsize_t>* dims = nullptr);
+
+// A whole-file checksum for the files gonio writes once (results, parts): HDF5 leaves the first
+// kUserBlock bytes to its user; gonio puts there the CRC-32 of every byte after them, so that a
+// damaged file is refused before HDF5 parses it (HDF5 1.10 may crash on damaged metadata).
+inline constexpr hsize_t kUserBlock = 512;
+// File creation properties with that user block.
+Handle file_creation_with_checksum();
+// After the file is closed: writes the checksum into its user block.
+void write_file_checksum(const std::string& path);
+// Throws std::runtime_error when the file carries a checksum that its bytes do not match
+// (files without one, older or written by others, pass).
+void check_file_checksum(const std::string& path);
+
+// What gonio wrote, sealed: on a group, the list of its datasets (gonio_datasets) and, on any
+// object, the list of its attributes (gonio_attributes) with the CRC-32 of their names and values
+// (gonio_attributes_crc32). A reader then finds a missing dataset, and a changed, removed or
+// damaged attribute (variable-length strings live outside HDF5's checksummed object headers).
+// Attributes and datasets added later by others are not covered, nor refused.
+void seal(hid_t object, bool group);
+// Throws std::runtime_error saying what is missing or changed; objects without a seal pass.
+void check_seal(hid_t object);
 
 } // namespace gonio::h5

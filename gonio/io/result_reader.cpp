@@ -124,11 +124,25 @@ void check_values(const std::string& name, const std::vector<double>& v) {
     }
 }
 
+// The 1-D datasets of a case: its axes and the sensor cells' coordinates.
+bool is_coordinate(const std::string& name) {
+    for (const char* c : {"theta_i", "phi_i", "cell", "channel", "order", "wavelength",
+                          "theta_center", "phi_center", "theta_min", "theta_max", "phi_min",
+                          "phi_max", "solid_angle", "projected_solid_angle"})
+        if (name == c) return true;
+    return false;
+}
+
 // One case's group: its axes checked, every per-incidence dataset's shape checked against them.
 CaseSummary read_case(hid_t file, const std::string& name) {
     if (H5Lexists(file, name.c_str(), H5P_DEFAULT) <= 0)
         bad("case " + name + " is listed in the file's `cases` but its group is missing");
     h5::Handle group(H5Gopen2(file, name.c_str(), H5P_DEFAULT), H5Gclose, "open group");
+    try {
+        h5::check_seal(group);
+    } catch (const std::exception& e) {
+        bad("case " + name + ": " + e.what());
+    }
     CaseSummary c;
     c.name = name;
     c.attributes = string_attributes(group);
@@ -151,6 +165,8 @@ CaseSummary read_case(hid_t file, const std::string& name) {
             h5::Handle d(H5Dopen2(group, ds.c_str(), H5P_DEFAULT), H5Dclose, "open dataset");
             h5::Handle space(H5Dget_space(d), H5Sclose, "dataspace");
             const int rank = H5Sget_simple_extent_ndims(space);
+            if (rank == 1 && !is_coordinate(ds))
+                bad(ds + ": a 1-D dataset where a quantity per incidence belongs");
             if (rank < 2 || rank > 5) continue; // an axis or a cell coordinate
             dims.resize(size_t(rank));
             H5Sget_simple_extent_dims(space, dims.data(), nullptr);
@@ -181,6 +197,11 @@ CaseSummary read_case(hid_t file, const std::string& name) {
 ResultSummary read_result_summary(const std::string& path) {
     h5::silence_errors();
     if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
+    try {
+        h5::check_file_checksum(path); // before HDF5 parses a damaged file
+    } catch (const std::exception& e) {
+        throw std::runtime_error(path + ": " + e.what());
+    }
     if (H5Fis_hdf5(path.c_str()) <= 0) throw std::runtime_error(path + ": not an HDF5 file");
     h5::Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose,
                     ("open " + path).c_str());
@@ -198,6 +219,7 @@ ResultSummary read_result_summary(const std::string& path) {
         throw std::runtime_error(path + ": unknown file format '" + format->second +
                                  "' (this gonio reads gonio-result 1 and 2)");
     try {
+        h5::check_seal(file);
         s.timings = timings(file);
         if (H5Aexists(file, "seed") <= 0) bad("no seed attribute");
         {

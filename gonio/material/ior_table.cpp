@@ -1,6 +1,7 @@
 #include "gonio/material/ior_table.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -29,10 +30,11 @@ IorTable IorTable::load(const std::string& path) {
         std::replace(line.begin(), line.end(), ',', ' ');
         std::istringstream row(line);
         double w, n, k;
-        if (!(row >> w >> n >> k) || !(w > 0) || !(n > 0) || k < 0)
+        if (!(row >> w >> n >> k) || !(w > 0) || !(n > 0) || !(k >= 0) || !std::isfinite(w) ||
+            !std::isfinite(n) || !std::isfinite(k))
             throw std::runtime_error(path + ":" + std::to_string(line_no) +
-                                     ": expected 'wavelength_nm,n,k' with wavelength > 0, n > 0, "
-                                     "k >= 0");
+                                     ": expected 'wavelength_nm,n,k', finite, with wavelength > "
+                                     "0, n > 0, k >= 0");
         if (!t.wavelength_.empty() && w <= t.wavelength_.back())
             throw std::runtime_error(path + ":" + std::to_string(line_no) +
                                      ": wavelengths must increase");

@@ -1,6 +1,7 @@
 // run_shard (run.h): the units of one shard into a part file, for merge_parts.
 #include "core/float_mode.h"
 #include "core/output_files.h"
+#include "gonio/io/hdf5_handles.h"
 #include "gonio/run/memory_estimate.h"
 #include "gonio/run/run_assembly.h"
 #include "gonio/run/unit_file.h"
@@ -53,6 +54,7 @@ long long run_shard(const Config& cfg, const RunOptions& options, const Shard& s
                 ++written;
             });
         file.close();
+        h5::write_file_checksum(tmp); // a part is written once: its every byte checksummed
     } catch (...) {
         file.discard();
         throw;

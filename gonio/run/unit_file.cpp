@@ -57,7 +57,8 @@ UnitFileWriter::UnitFileWriter(const std::string& path, const UnitFileHeader& h,
         if (file_ < 0) throw std::runtime_error(path + ": cannot reopen the checkpoint");
         return;
     }
-    file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, h5::file_creation_with_checksum(),
+                      h5::checksummed_file_access()); // object headers checksummed too
     if (file_ < 0)
         throw std::runtime_error(
             path +
@@ -75,6 +76,7 @@ UnitFileWriter::UnitFileWriter(const std::string& path, const UnitFileHeader& h,
     write_int(f, "by_batches", h.by_batches);
     write_int(f, "seed", h.seed);
     write_int(f, "units_total", h.units_total);
+    h5::seal(f, false); // the run's identity, checksummed
     H5Fflush(f, H5F_SCOPE_GLOBAL);
 }
 
@@ -173,6 +175,7 @@ NumberedUnit read_unit(hid_t f, const std::string& name) {
 
 std::vector<NumberedUnit> read_units(const std::string& path, UnitFileHeader* header) {
     const h5::Handle f = open_unit_file(path, H5F_ACC_RDONLY);
+    h5::check_seal(f);
     if (H5Aexists(f, "file_format") <= 0 || h5::read_string_attribute(f, "file_format") != kFormat)
         throw std::runtime_error(std::string("not a unit file of this gonio (") + kFormat +
                                  ": a part of `gonio run --shard` or a checkpoint)");
@@ -213,8 +216,9 @@ std::vector<NumberedUnit> read_units(const std::string& path, UnitFileHeader* he
 std::vector<NumberedUnit> read_unit_file(const std::string& path, UnitFileHeader* header) {
     h5::silence_errors();
     if (!std::filesystem::exists(path)) throw std::runtime_error(path + ": no such file");
-    if (H5Fis_hdf5(path.c_str()) <= 0) throw std::runtime_error(path + ": not an HDF5 file");
     try {
+        h5::check_file_checksum(path); // a part's (a checkpoint grows: it has none)
+        if (H5Fis_hdf5(path.c_str()) <= 0) throw std::runtime_error("not an HDF5 file");
         return read_units(path, header);
     } catch (const std::exception& e) {
         throw std::runtime_error(path + ": " + e.what());

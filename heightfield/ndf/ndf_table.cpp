@@ -73,6 +73,10 @@ NdfTable read_hdf5(const std::string& path) {
     }
     hsize_t dims[2] = {0, 0};
     H5LTget_dataset_info(file, "D", dims, nullptr, nullptr);
+    if (dims[0] > 100000 || dims[1] > 100000 || dims[0] * dims[1] > 10000000) {
+        H5Fclose(file);
+        fail(path, "dataset \"D\" is larger than 10^7 values");
+    }
     t.values.resize(size_t(dims[0] * dims[1]));
     ok = H5LTread_dataset_double(file, "D", t.values.data());
     H5Fclose(file);
