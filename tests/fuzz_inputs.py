@@ -373,7 +373,7 @@ def main():
     p.add_argument("gonio")
     p.add_argument("--cases", type=int, default=240)
     p.add_argument("--seed", type=int, default=1)
-    p.add_argument("--timeout", type=float, default=60)
+    p.add_argument("--timeout", type=float, default=180)
     p.add_argument("--keep", help="copy the failing cases' directories here")
     a = p.parse_args()
     rng = random.Random(a.seed)

@@ -153,3 +153,24 @@ TEST_CASE("Model L1 cell energies do not depend on the thread count") {
     many = energies(ndf, FresnelTerm::mirror(), MaskingForm::height_correlated, wi, 3240);
     CHECK(one == many);
 }
+
+TEST_CASE("Model L1 cell quadrature is bounded: a cell out of pieces stops and reports its error") {
+    // A sharp lobe at a tolerance no budget of 16 splits per cell can meet (a noisy measured NDF
+    // table needs more splits than exist at any tolerance: this is its bounded stand-in).
+    const Ggx ndf(0.02);
+    const MicrofacetModel model(ndf, FresnelTerm::mirror(), MaskingForm::height_correlated);
+    const Vec3 wi = spherical_direction(radians(30.0), 0.0);
+    const BeckersSensor sensor(145);
+    CellQuadrature tight;
+    tight.rel_tol = 1e-12;
+    tight.max_pieces = 16;
+    double reached = 0, converged = 0;
+    const std::vector<double> coarse = model_cell_energy(model, wi, sensor, tight, &reached);
+    const std::vector<double> fine = model_cell_energy(model, wi, sensor, {}, &converged);
+    CHECK(converged == CellQuadrature{}.rel_tol); // the default tolerance is met here
+    CHECK(reached > tight.rel_tol);
+    CHECK(reached < 1);
+    // The bound reported holds for every cell, against the converged energies.
+    for (size_t c = 0; c < fine.size(); ++c)
+        CHECK(std::abs(coarse[c] - fine[c]) <= reached * coarse[c] + 1e-6 * fine[c] + 1e-15);
+}

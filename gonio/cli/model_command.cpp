@@ -44,6 +44,11 @@ int model(const CommonOptions& a, const CliContext& context) {
             std::printf("\n");
         }
     };
+    o.observer.warn = [&](const std::string& w) {
+        if (a.quiet) return;
+        progress.finish();
+        std::fprintf(stderr, "gonio: warning: %s\n", w.c_str());
+    };
     RunResult result;
     try {
         result = run_models(cfg, o);

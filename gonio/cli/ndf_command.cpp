@@ -76,10 +76,15 @@ int ndf_curves(const NdfArgs& args) {
             for (double theta : c.theta_i_deg)
                 for (double phi : c.phi_i_deg) {
                     const Vec3 wi = spherical_direction(radians(theta), radians(phi));
+                    double reached = 0;
                     const std::vector<double> albedo = albedo_from_cells(
-                        model_cell_energy(model, wi, sensor, c.model.quadrature), model.channels());
+                        model_cell_energy(model, wi, sensor, c.model.quadrature, &reached),
+                        model.channels());
                     std::printf("  Model L1 albedo at theta_i=%g phi_i=%g:", theta, phi);
                     for (double a : albedo) std::printf(" %.6f", a);
+                    if (reached > c.model.quadrature.rel_tol) // a cell ran out of pieces
+                        std::printf("  (relative error up to %.2g, not model.tolerance %g)",
+                                    reached, c.model.quadrature.rel_tol);
                     std::printf("\n");
                 }
         }

@@ -4,6 +4,8 @@
 #include "core/check.h"
 #include "gonio/model/cell_integrator.h"
 
+#include <algorithm>
+
 namespace gonio {
 
 void ModelResult::allocate(size_t nt, size_t np, size_t ncell, size_t nc, bool monte_carlo) {
@@ -27,6 +29,7 @@ void ModelResult::put(size_t t, size_t p, const ModelIncidence& m,
     const size_t nc = albedo.extent("channel"), ncell = projected_solid_angle.size();
     GONIO_CHECK(m.energy.size() == ncell * nc);
     GONIO_CHECK(m.monte_carlo() == !l1.empty());
+    tolerance_reached = std::max(tolerance_reached, m.relative_tolerance);
     auto brdf_of = [&](std::vector<double> v) {
         return cell_brdf(std::move(v), projected_solid_angle, nc);
     };

@@ -22,6 +22,9 @@ struct ModelResult {
     // single-scattering part and the albedos of order 1, 2 and 2 and up.
     Array brdf_stderr, albedo_stderr;
     Array l1, l1_albedo, l2_albedo, l2plus_albedo;
+    // Analytic models: the largest relative error bound their quadrature reached over the sweep
+    // (the configured tolerance unless a cell ran out of pieces first).
+    double tolerance_reached = 0;
 
     // The arrays of an n_theta x n_phi sweep on `cells` cells and `channels` channels.
     void allocate(size_t n_theta, size_t n_phi, size_t cells, size_t channels, bool monte_carlo);

@@ -222,7 +222,8 @@ ResultWriter::CaseGroup ResultWriter::open_case(const CaseConfig& c, const Becke
     return g;
 }
 
-void ResultWriter::write_models(CaseGroup& g, const std::vector<ModelResult>& models) {
+void ResultWriter::write_models(CaseGroup& g, const std::vector<ModelResult>& models,
+                                double tolerance) {
     std::vector<std::string> names;
     for (const ModelResult& r : models) {
         names.push_back(r.name);
@@ -238,6 +239,8 @@ void ResultWriter::write_models(CaseGroup& g, const std::vector<ModelResult>& mo
         }
         h5::write_string_attribute(g.group, m + "_compared_with", name_of(r.compared_with));
         g.put(m + "_seconds", r.seconds);
+        if (r.tolerance_reached > tolerance) // a cell ran out of quadrature pieces
+            h5::write_double_attribute(g.group, m + "_tolerance_reached", r.tolerance_reached);
         if (!r.l1.empty()) { // the V-cavity's orders
             g.put(m + "_l1", r.l1);
             g.put(m + "_l1_albedo", r.l1_albedo);
@@ -252,7 +255,7 @@ void ResultWriter::write_model_case(const CaseConfig& c, const BeckersSensor& se
                                     const std::string& ndf_description,
                                     const std::vector<ModelResult>& models) {
     CaseGroup g = open_case(c, sensor, ndf_description);
-    write_models(g, models);
+    write_models(g, models, c.model.quadrature.rel_tol);
 }
 
 void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSensor& sensor,
@@ -321,7 +324,7 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
         h5::write_double_attribute(g.group, "target_max_rays", double(c.trace.target.max_rays));
         h5::write_double_attribute(g.group, "target_max_seconds", c.trace.target.max_seconds);
     }
-    write_models(g, models);
+    write_models(g, models, c.model.quadrature.rel_tol);
     // Each model against what it models (single scattering or every order), with errors.
     for (size_t mi = 0; mi < models.size(); ++mi) {
         const ModelResult& model = models[mi];

@@ -1,5 +1,5 @@
 #pragma once
-// The HDF5 result file, format "gonio-result 2" (layout in the README, "Result file"). One file
+// The HDF5 result file, format "gonio-result 2" (layout in docs/result-file.md). One file
 // per run, one group per case; one dimension scale per axis (theta_i, phi_i, order, cell,
 // channel), the cell geometry and wavelengths as variables along cell and channel named in each
 // data variable's `coordinates` attribute (netCDF style: xarray opens a case as it is); the
@@ -56,7 +56,8 @@ class ResultWriter {
     struct CaseGroup;
     CaseGroup open_case(const CaseConfig& c, const BeckersSensor& sensor,
                         const std::string& ndf_description);
-    void write_models(CaseGroup& g, const std::vector<ModelResult>& models);
+    // `tolerance`: the configured quadrature tolerance; a model that reached less is marked.
+    void write_models(CaseGroup& g, const std::vector<ModelResult>& models, double tolerance);
 
     std::string path_, tmp_path_;
     h5::Handle file_;

@@ -33,13 +33,28 @@ class CellIntegrator {
         reach_across_ = 12.0 * wide * std::min(1.0, wi.z + 12.0 * wide);
     }
 
-    void integrate(const Rect& r, double* out) const {
+    // Adds the rectangle's integral into out; returns the error bound it reached relative to
+    // its magnitude when the budget of pieces ran out first, else 0.
+    double integrate(const Rect& r, double* out) const {
         std::vector<double> coarse(nc_, 0.0);
         gauss(r, coarse.data());
-        refine(r, coarse.data(), 0, out);
+        Budget budget{q_.max_pieces};
+        refine(r, coarse.data(), 0, budget, out);
+        if (!budget.ran_out) return 0;
+        double magnitude = 0;
+        for (int c = 0; c < nc_; ++c) magnitude = std::max(magnitude, std::abs(out[c]));
+        return magnitude > 0 ? budget.unresolved / magnitude : 1;
     }
 
   private:
+    // Splits left to one cell, and the error estimates of the pieces accepted without meeting
+    // the tolerance once they ran out.
+    struct Budget {
+        long pieces;
+        bool ran_out = false;
+        double unresolved = 0;
+    };
+
     // Tensor Gauss-Legendre over the rectangle, added into out.
     void gauss(const Rect& r, double* out) const {
         const double hz = 0.5 * (r.z1 - r.z0), hp = 0.5 * (r.p1 - r.p0);
@@ -108,8 +123,10 @@ class CellIntegrator {
     // azimuthal splits), or the side the lobe needs resolved. A rectangle is accepted when
     // splitting changes its integral by less than rel_tol of that integral, or by less than an
     // absolute floor proportional to its solid angle (rel_tol * 1e-4 of the hemisphere's share), so
-    // negligible regions stop early.
-    void refine(const Rect& r, const double* coarse, int depth, double* out) const {
+    // negligible regions stop early. A cell whose integrand has kinks everywhere (a measured
+    // NDF's table) can need more splits than exist: the budget of pieces bounds its work, and the
+    // error left in the pieces it could not split is reported instead of the tolerance.
+    void refine(const Rect& r, const double* coarse, int depth, Budget& budget, double* out) const {
         double dt, dp;
         extents(r, dt, dp);
         bool split_polar = dt >= dp;
@@ -134,12 +151,16 @@ class CellIntegrator {
         }
         const double area = (r.z1 - r.z0) * (r.p1 - r.p0);
         const double tol = q_.rel_tol * (magnitude + 1e-4 * area / kTwoPi);
-        if (depth >= q_.max_depth || (err <= tol && !forced)) {
+        const bool settled = err <= tol && !forced;
+        if (depth >= q_.max_depth || settled || budget.pieces <= 0) {
+            if (!settled && depth < q_.max_depth && err > tol)
+                budget.ran_out = true, budget.unresolved += err;
             for (int k = 0; k < 2; ++k)
                 for (int c = 0; c < nc_; ++c) out[c] += part[k * nc_ + c];
             return;
         }
-        for (int k = 0; k < 2; ++k) refine(kids[k], &part[k * nc_], depth + 1, out);
+        --budget.pieces;
+        for (int k = 0; k < 2; ++k) refine(kids[k], &part[k * nc_], depth + 1, budget, out);
     }
 
     const BrdfModel& model_;
@@ -155,8 +176,10 @@ class CellIntegrator {
 } // namespace
 
 std::vector<double> model_cell_energy(const BrdfModel& model, const Vec3& wi,
-                                      const BeckersSensor& sensor, const CellQuadrature& q) {
+                                      const BeckersSensor& sensor, const CellQuadrature& q,
+                                      double* reached) {
     const int nc = model.channels();
+    std::vector<double> short_by(sensor.cell_count(), 0.0);
     std::vector<double> energy(static_cast<size_t>(sensor.cell_count()) * nc, 0.0);
     for (const BrdfModel* term : model.terms()) {
         // A smooth term (no lobe: the IL body, whose every evaluation is a body_points^2 sum) is
@@ -170,9 +193,11 @@ std::vector<double> model_cell_energy(const BrdfModel& model, const Vec3& wi,
             const SensorCell& cell = sensor.cell(c);
             const Rect r{std::cos(cell.theta_max), std::cos(cell.theta_min), cell.phi_min,
                          cell.phi_max};
-            integrator.integrate(r, &energy[static_cast<size_t>(c) * nc]);
+            short_by[c] =
+                std::max(short_by[c], integrator.integrate(r, &energy[static_cast<size_t>(c) * nc]));
         });
     }
+    if (reached) *reached = std::max(q.rel_tol, *std::max_element(short_by.begin(), short_by.end()));
     return energy;
 }
 

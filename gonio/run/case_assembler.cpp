@@ -4,6 +4,8 @@
 #include "gonio/model/model_comparison.h"
 #include "gonio/run/surface_ensemble.h"
 
+#include <cstdio>
+
 namespace gonio {
 
 CaseAssembler::CaseAssembler(const CaseConfig& c, bool simulated) : c_(c), simulated_(simulated) {
@@ -41,6 +43,17 @@ void CaseAssembler::add(const UnitId& id, UnitResult&& u, const RunObserver& obs
     // The unit's own times: its traces', then its models'.
     for (const TraceResult& m : u.members) result_.phases.add(Phase::trace, m.seconds);
     for (size_t k = 0; k < u.models.size(); ++k) {
+        const double reached = u.models[k].relative_tolerance;
+        if (!u.models[k].monte_carlo() && reached > c_.model.quadrature.rel_tol && observer.warn) {
+            char text[320];
+            std::snprintf(text, sizeof text,
+                          "%s: model_%s at theta_i=%g phi_i=%g: the quadrature ran out of pieces "
+                          "at a relative error of %.2g (model.tolerance %g); a larger "
+                          "model.tolerance gives that bound in less time",
+                          c_.name.c_str(), result_.models[k].name.c_str(), c_.theta_i_deg[t],
+                          c_.phi_i_deg[p], reached, c_.model.quadrature.rel_tol);
+            observer.warn(text);
+        }
         result_.models[k].put(t, p, u.models[k], psa);
         result_.phases.add_model(result_.models[k].name, u.models[k].seconds);
     }
