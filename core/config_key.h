@@ -2,7 +2,7 @@
 // One configuration key as a component declares it: name, kind, allowed range or choices,
 // default, a one-line meaning and the paper it comes from. The same object is what the component
 // reads with (TableReader::number(key), ...), what unknown-key checks and "did you mean" use,
-// what `gonio keys` lists and what the README's configuration table is generated from, so the
+// what `gonio keys` lists and what docs/configuration.md's table is generated from, so the
 // schema exists once.
 #include "core/number_text.h"
 
@@ -35,7 +35,7 @@ enum class KeyKind {
 struct Key {
     std::string name;
     KeyKind kind = KeyKind::number;
-    std::string meaning;              // one line, for `gonio keys` and the README
+    std::string meaning;              // one line, for `gonio keys` and docs/configuration.md
     Range range{};                    // number, integer, numbers
     std::vector<std::string> choices; // string, strings
     std::optional<double> number_default;

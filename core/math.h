@@ -1,6 +1,6 @@
 #pragma once
 // Small vector and angle helpers shared by every library.
-// Frame convention (README): macro-surface normal n = +z, directions point away from the surface,
+// Frame convention (docs/architecture.md): macro-surface normal n = +z, directions point away from the surface,
 // theta from +z, phi from +x counter-clockwise. Code speaks radians.
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@ const Key& generator_key() {
     static const Key key = [] {
         std::vector<std::string> names;
         for (const SurfaceGenerator* g : surface_generators()) names.push_back(g->name);
-        return Key::string("generator", names, "how the microsurface is made (below)")
+        return Key::string("generator", names, "how the microsurface is made (docs/microsurfaces.md)")
             .fallback(default_generator()->name);
     }();
     return key;
@@ -39,7 +39,7 @@ const Key kEdges = Key::string("edges", enum_names<Edges>(),
 const Key kRealisations =
     Key::integer("realisations", {1, 4096},
                  "independent surfaces per case, the rays of every incidence spread over them: "
-                 "every error then includes the surfaces' spread (README, \"Surface ensembles\")")
+                 "every error then includes the surfaces' spread (docs/ensembles.md)")
         .fallback(1.0);
 const Key kMaxRealisations =
     Key::integer("max_realisations", {2, 4096},

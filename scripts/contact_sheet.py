@@ -3,7 +3,7 @@
 
 Usage: scripts/contact_sheet.py OUT.png IMAGE.png... [--columns N] [--labels A,B,...]
        [--title TEXT]
-Used for the README's R19 Fig. 11/12-style sheet (every case with and without multiple
+Used for docs/renders.md's R19 Fig. 11/12-style sheet (every case with and without multiple
 scattering, and their Delta E00). Needs Debian's python3-matplotlib (under /usr/bin/python3).
 """
 import argparse

@@ -12,6 +12,7 @@ packages=(
   libcli11-dev libtomlplusplus-dev doctest-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   libopenmpi-dev openmpi-bin
   python3-h5py python3-numpy python3-matplotlib python3-xarray python3-h5netcdf
+  python3-plotly chromium chromium-driver python3-selenium
 )
 
 missing=()

@@ -3,7 +3,7 @@
 // disk and hemisphere partition into equal-area cells", Comput. Geom. 45(7)), as used by the
 // virtual gonioreflectometer of R19 section 5. Every cell subtends exactly 2 pi / N sr.
 //
-// Rings are built from the rim inwards (README, "How the pieces work"): with S_0 = N cells inside
+// Rings are built from the rim inwards (docs/architecture.md): with S_0 = N cells inside
 // the cap of angle pi/2, step inwards by d_theta = sqrt(2 pi / N) (the side of a square cell),
 // round the number of cells inside the new cap, S_l = round(N (1 - cos theta_l)), and put the
 // boundary exactly where that cap holds S_l cells: cos theta_l = 1 - S_l / N. A cap of fewer than 7

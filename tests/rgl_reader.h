@@ -1,7 +1,7 @@
 #pragma once
 // A reader of RGL measured-BSDF tensor files written in the tests from the format's specification
 // (Dupuy & Jakob 2018; the layout and evaluation rule of Mitsuba 3's src/bsdfs/measured.cpp and
-// pbrt-v4's MeasuredBxDF, summarised in the README, "Exporting the BSDF"): it parses the container
+// pbrt-v4's MeasuredBxDF, summarised in docs/tabulated-bsdf.md): it parses the container
 // itself and evaluates f cos = spectra(vndf^-1(u_m)) ndf(u_m) / (4 sigma(w_p)), samples through
 // luminance then vndf, and returns the readers' pdf. Incidences must be swept ones (the slices are
 // used as they are: no interpolation between parameter slices).

@@ -460,8 +460,8 @@ TEST_CASE("models per case: defaults by material, lists, what each needs, Ashikh
     CHECK(parse_config(head + "[model]\nmodels = \"pbrdf\"\n", "t.toml").cases[0].needs_surface());
 }
 
-TEST_CASE("the README's configuration table is the declared keys (gonio keys --markdown)") {
-    std::ifstream in(std::string(GONIO_SOURCE_DIR) + "/README.md");
+TEST_CASE("docs/configuration.md's table is the declared keys (gonio keys --markdown)") {
+    std::ifstream in(std::string(GONIO_SOURCE_DIR) + "/docs/configuration.md");
     REQUIRE(in);
     const std::string readme((std::istreambuf_iterator<char>(in)),
                              std::istreambuf_iterator<char>());

@@ -44,7 +44,7 @@ TEST_CASE("Beckers rings tile the hemisphere from the pole to the horizon") {
 }
 
 TEST_CASE("Beckers cells of the shipped sizes are close to square") {
-    // Some N give a poor second ring (README, "How the pieces work"). Polar extent over azimuthal
+    // Some N give a poor second ring (docs/architecture.md). Polar extent over azimuthal
     // width, for every ring outside the polar cap.
     for (int n : {145, 3240, 10000}) {
         const BeckersSensor s(n);

@@ -127,7 +127,7 @@ TEST_CASE("sliced matching: a multi-lobe sinc curve and two anisotropic blends [
     // elliptical one: the TV stays at 1.5-1.9 x the ideal from 100 to 2000 iterations and at
     // 100 bins does not fall with the size (0.024 for the sinc, 0.035 for the GGX/Beckmann blend
     // at 256^2 and 512^2), while an elliptical target through the same per-direction path (a
-    // one-component mixture of anisotropic Beckmann) reaches the ideal. Recorded in the README.
+    // one-component mixture of anisotropic Beckmann) reaches the ideal. Recorded in docs/microsurfaces.md.
     const SincNdf sinc(6.0, 0.05, 128);
     check_fidelity(make(sinc, "sliced-matching"), sinc, 1, 1, 2.5);
     const AnisotropicBlend ggx_beckmann(std::make_unique<Ggx>(0.5, 0.5),
@@ -156,7 +156,7 @@ TEST_CASE("Heitz and constrained generators follow Beckmann too") {
     // Bar: within three times the mean distance of an ideal independent sample, and the
     // effective alpha within 3 %. Their surfaces are correlated by construction: one Gaussian
     // realisation with ~(256/8)^2 correlation patches, or a lattice of features kept by design
-    // (measured: Heitz 2.7x, constrained 2.1x; README).
+    // (measured: Heitz 2.7x, constrained 2.1x; docs/microsurfaces.md).
     const Beckmann beckmann(0.5);
     SurfaceSpec heitz;
     heitz.generator = &heitz_generator();

@@ -9,7 +9,7 @@ namespace gonio {
 namespace {
 std::function<int()> setup(CLI::App& app, const CliContext&) {
     auto markdown = std::make_shared<bool>(false);
-    app.add_flag("--markdown", *markdown, "Print the README's configuration table (Markdown)");
+    app.add_flag("--markdown", *markdown, "Print the configuration table of docs/configuration.md (Markdown)");
     return [markdown] {
         std::fputs((*markdown ? keys_markdown() : keys_text()).c_str(), stdout);
         return 0;

@@ -40,7 +40,7 @@ const Key kPhiI = Key::numbers("phi_i", {0, 360}, "incidence azimuth; a sweep, i
 const Key kCells =
     Key::integer("cells", {1, 1e7}, "Beckers equal-area cells on the hemisphere").fallback(3240.0);
 
-// The sections a case may hold, in the order of the README.
+// The sections a case may hold, in the order of docs/configuration.md.
 const std::vector<std::string> kSections = {"ndf",    "material", "spectrum", "beam",
                                             "sensor", "model",    "surface",  "trace"};
 

@@ -3,8 +3,8 @@
 // facets, incidence sweep, sensor, models, trace and surface settings. Every component reads its
 // own keys (the registries: heightfield/ndf/ndf_family.h, gonio/material/material_kind.h,
 // gonio/model/model_kind.h, heightfield/surface_spec.h, gonio/trace/gonioreflectometer.h);
-// load_config validates everything before any work starts. `gonio keys` and the README's
-// "Configuration" table are generated from the same declarations.
+// load_config validates everything before any work starts. `gonio keys` and the
+// table of docs/configuration.md are generated from the same declarations.
 #include "gonio/material/material_kind.h"
 #include "gonio/model/model_kind.h"
 #include "gonio/trace/gonioreflectometer.h"
@@ -54,9 +54,9 @@ Config load_config(const std::string& path, const std::vector<std::string>& over
 Config parse_config(const std::string& text, const std::string& path,
                     const std::vector<std::string>& overrides = {});
 
-// Every key of every section and component: for `gonio keys`, the README table and the checks.
+// Every key of every section and component: for `gonio keys`, the table of docs/configuration.md and the checks.
 std::vector<KeyGroup> config_key_groups();
-// The keys as a Markdown table (the README's "Configuration" table) and as plain text.
+// The keys as a Markdown table (docs/configuration.md) and as plain text.
 std::string keys_markdown();
 std::string keys_text();
 

@@ -1,7 +1,7 @@
 #pragma once
 // The registry of facet materials ([material] type): each kind declares its keys and reads itself
 // into a FacetSpec, everything the tracer and the models need of a case's facets. Config loading,
-// `gonio keys` and the README's table come from this list.
+// `gonio keys` and the configuration table (docs/configuration.md) come from this list.
 #include "core/config_key.h"
 #include "core/table_reader.h"
 #include "gonio/material/fresnel_term.h"

@@ -2,7 +2,7 @@
 // The registry of models ([model] models): each kind declares its keys and reads its settings
 // into a ModelChoice, which builds the model when the case runs. A model also says which facets
 // it suits and which simulated quantity it is held against. Config loading, `gonio keys` and the
-// README's table come from this list.
+// configuration table (docs/configuration.md) come from this list.
 #include "core/config_key.h"
 #include "core/table_reader.h"
 #include "gonio/material/material_kind.h"

@@ -1,5 +1,5 @@
 #pragma once
-// The virtual gonioreflectometer (R19 section 5; README, "The virtual gonioreflectometer"): a
+// The virtual gonioreflectometer (R19 section 5; docs/gonioreflectometer.md): a
 // collimated beam from direction i falls on the periodic microsurface; every ray is followed bounce
 // by bounce with the facets' own scattering, and its exit direction is binned on the equal-area
 // sensor, per bounce order, on the upper sensor if it leaves upwards or on the lower one if it

@@ -1,7 +1,7 @@
 #pragma once
 // The registry of distributions: each family declares, in its own file, its config keys and how
 // it builds itself from a reader of its table (pbrt-v4's Create(ParameterDictionary), Mitsuba's
-// plugin constructors). Config loading, `gonio keys` and the README's table all read this list.
+// plugin constructors). Config loading, `gonio keys` and the configuration table (docs/configuration.md) all read this list.
 // A new family touches its own files, one line of ndf_families() and the CMake source list.
 #include "core/config_key.h"
 #include "core/table_reader.h"
@@ -24,7 +24,7 @@ struct NdfFamily {
     bool curve = false;
 };
 
-// Every family, in the order of the README.
+// Every family, in the order of docs/configuration.md.
 const std::vector<const NdfFamily*>& ndf_families();
 // The `type` key, whose choices are the families.
 const Key& ndf_type_key();

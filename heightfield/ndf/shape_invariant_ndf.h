@@ -11,7 +11,7 @@ namespace gonio {
 
 class ShapeInvariantNdf : public Ndf {
   public:
-    // alpha_x, alpha_y > 0: the usual Beckmann/GGX roughness along x and y (README: alpha).
+    // alpha_x, alpha_y > 0: the usual Beckmann/GGX roughness along x and y (docs/configuration.md: alpha).
     ShapeInvariantNdf(double alpha_x, double alpha_y);
 
     double alpha_x() const { return ax_; }

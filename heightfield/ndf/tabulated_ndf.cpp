@@ -325,7 +325,7 @@ double TabulatedNdf::widest_feature() const {
 
 namespace gonio {
 namespace {
-const Key kTableFile = Key::path("file", "a D(θ, φ) table: text or `.h5` (README, below)");
+const Key kTableFile = Key::path("file", "a D(θ, φ) table: text or `.h5` (docs/configuration.md, after the table)");
 const Key kMapFile = Key::path("file", "an EXR height map (or normal map) whose facet NDF is used");
 const Key kThetaIntervals =
     Key::integer("theta_intervals", {2, 900}, "height_map: the facet table's θ intervals (2°)")

@@ -1,0 +1,29 @@
+#pragma once
+// `gonio report`: one self-contained HTML page per result file. The data a page shows is gathered
+// here from the file (summary, per-cell maps, albedos, ledger, the surface's facet NDF against its
+// target); the page itself is the page template (report_page.html, report.js) with plotly.js from
+// Debian's python3-plotly and the data embedded, so it opens without a network.
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+struct ReportSource {
+    std::string result;              // the HDF5 result file
+    std::vector<std::string> images; // PNG renders to show with it (gonio render's output)
+};
+
+// The page's data. Throws std::runtime_error naming the file and dataset when the file cannot be
+// read (the readers' checks: shapes against axes, finite values).
+nlohmann::json report_data(const ReportSource& source);
+
+// The whole page: `plotly_js` is the library's source, embedded as it is.
+std::string report_page(const nlohmann::json& data, const std::string& plotly_js);
+
+// plotly.js: $GONIO_PLOTLY_JS, else the file Debian's python3-plotly ships. Throws
+// std::runtime_error saying where it looked.
+std::string read_plotly_js();
+
+} // namespace gonio

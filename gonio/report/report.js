@@ -1,0 +1,262 @@
+// gonio report: the page's logic. The data (report_data.cpp) is embedded as JSON; the per-cell
+// maps are base64 float32 arrays [theta_i][phi_i][cell][channel], decoded once per case.
+"use strict";
+const D = JSON.parse(document.getElementById("gonio-data").textContent);
+const $ = (id) => document.getElementById(id);
+const decoded = new Map();
+
+function floats(b64) {
+  const s = atob(b64);
+  const bytes = new Uint8Array(s.length);
+  for (let i = 0; i < s.length; ++i) bytes[i] = s.charCodeAt(i);
+  return new Float32Array(bytes.buffer);
+}
+function maps(ci) {
+  if (!decoded.has(ci)) {
+    const out = {};
+    for (const [k, v] of Object.entries(D.cases[ci].maps)) out[k] = floats(v);
+    decoded.set(ci, out);
+  }
+  return decoded.get(ci);
+}
+const fmt = (v, d = 4) => (v === undefined || v === null || !isFinite(v) ? "–" : Number(v).toPrecision(d));
+const state = { c: 0, t: 0, p: 0, ch: 0 };
+
+function fillSelect(el, labels, value) {
+  el.innerHTML = "";
+  labels.forEach((l, i) => { const o = document.createElement("option"); o.value = i; o.textContent = l; el.appendChild(o); });
+  el.value = String(value);
+}
+
+// ---- the run's summary -------------------------------------------------------------------
+function summary() {
+  $("file").textContent = D.file;
+  const a = D.attributes;
+  const bits = [["gonio", a.gonio_version], ["git", a.git_hash], ["seed", D.seed], ["created", a.created_utc],
+                ["config", a.config_path], ["command", a.command_line], ["MPI ranks", a.mpi_ranks],
+                ["threads per rank", a.threads_per_rank]].filter((b) => b[1] !== undefined && b[1] !== "");
+  $("provenance").textContent = bits.map((b) => b[0] + ": " + b[1]).join(" · ");
+  const head = ["case", "material", "NDF", "masking", "models", "incidences", "rays", "surfaces", "error bars", "stopped by", "seconds"];
+  const rows = D.cases.map((c) => {
+    const at = c.attributes, rays = (c.runs.rays || []).reduce((s, v) => s + v, 0);
+    const surfaces = Math.max(1, ...(c.runs.realisations || [1]));
+    const stops = [...new Set(c.stop || [])].join(", ");
+    return [c.name, at.fresnel || at.material, at.ndf, at.masking, c.models.join(", "),
+            c.theta_i.length * c.phi_i.length, c.simulated ? rays.toExponential(2) : "–",
+            c.simulated ? surfaces : "–", at.error_scope || "–", stops || "–",
+            fmt(c.timings.wall !== undefined ? c.timings.wall : Object.values(c.timings).reduce((s, v) => s + v, 0), 3)];
+  });
+  $("summary").innerHTML = "<tr>" + head.map((h) => "<th>" + h + "</th>").join("") + "</tr>" +
+    rows.map((r) => "<tr>" + r.map((v) => "<td>" + String(v).replace(/</g, "&lt;") + "</td>").join("") + "</tr>").join("");
+  $("timings").textContent = "Phases (s): " + Object.entries(D.timings).map(([k, v]) => k + " " + fmt(v, 3)).join(", ");
+}
+
+// ---- selections -------------------------------------------------------------------------
+function caseChanged() {
+  const c = D.cases[state.c];
+  state.t = Math.min(state.t, c.theta_i.length - 1);
+  state.p = Math.min(state.p, c.phi_i.length - 1);
+  state.ch = Math.min(state.ch, c.channels - 1);
+  fillSelect($("theta"), c.theta_i.map((v) => v + "°"), state.t);
+  fillSelect($("phi"), c.phi_i.map((v) => v + "°"), state.p);
+  fillSelect($("channel"), c.wavelength.length ? c.wavelength.map((w) => w + " nm") :
+             Array.from({ length: c.channels }, (_, i) => String(i)), state.ch);
+  draw();
+}
+
+// Values of one map at the selected incidence and channel, per cell.
+function cellValues(arr, c, n) {
+  const np = c.phi_i.length, nc = c.channels, base = (state.t * np + state.p) * n, out = new Float64Array(n);
+  for (let k = 0; k < n; ++k) out[k] = arr[(base + k) * nc + state.ch];
+  return out;
+}
+
+// The hemisphere maps: simulated orders, models, and the differences in standard errors.
+function mapSet(c, m, n) {
+  const get = (k) => (m[k] ? cellValues(m[k], c, n) : null);
+  const list = [];
+  const l1 = get("l1"), l2 = get("l2plus");
+  let linf = null;
+  if (l1 && l2) linf = l1.map((v, k) => v + l2[k]);
+  if (l1) list.push({ key: "l1", title: "simulated L1", v: l1, brdf: true });
+  if (l2) list.push({ key: "l2plus", title: "simulated L2+", v: l2, brdf: true });
+  if (linf) list.push({ key: "linf", title: "simulated L∞", v: linf, brdf: true });
+  const t = get("t");
+  if (t) list.push({ key: "t", title: "simulated T (below, mirrored)", v: t, brdf: true });
+  for (const name of c.models) {
+    const mv = get("model_" + name);
+    if (!mv) continue;
+    list.push({ key: "model_" + name, title: "model " + name, v: mv, brdf: true });
+    const every = c.compared_with[name] === "linf";
+    const sim = every ? linf : l1, err = every ? get("linf_stderr") : get("l1_stderr");
+    if (!sim || !err) continue;
+    const merr = get("model_" + name + "_stderr");
+    const s = sim.map((v, k) => {
+      const e = Math.sqrt(err[k] * err[k] + (merr ? merr[k] * merr[k] : 0));
+      return e > 0 ? (v - mv[k]) / e : NaN;
+    });
+    list.push({ key: "sigma_" + name, title: (every ? "L∞" : "L1") + " − " + name + " (σ)", v: s, brdf: false });
+  }
+  return { list, l1, linf };
+}
+
+function drawMaps(c, set, sensor) {
+  const P = sensor.pixels, pc = sensor.pixel_cell;
+  const container = $("maps");
+  const keys = set.list.map((e) => e.key).join(",");
+  if (container.dataset.keys !== keys) {
+    container.innerHTML = "";
+    for (const e of set.list) { const d = document.createElement("div"); d.id = "map-" + e.key; d.className = "plot"; container.appendChild(d); }
+    container.dataset.keys = keys;
+  }
+  let lo = Infinity, hi = -Infinity;
+  for (const e of set.list) if (e.brdf) for (const v of e.v) if (v > 0) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
+  if (!(hi > 0)) { lo = 1e-3; hi = 1; }
+  lo = Math.max(lo, hi * 1e-6);
+  for (const e of set.list) {
+    const z = [], raw = [];
+    for (let r = 0; r < P; ++r) {
+      const zr = new Array(P), rr = new Array(P);
+      for (let q = 0; q < P; ++q) {
+        const k = pc[r * P + q];
+        if (k < 0) { zr[q] = null; rr[q] = null; continue; }
+        const v = e.v[k];
+        rr[q] = v;
+        zr[q] = e.brdf ? (v > 0 ? Math.log10(Math.max(v, lo)) : null) : (isFinite(v) ? Math.max(-5, Math.min(5, v)) : null);
+      }
+      z.push(zr); raw.push(rr);
+    }
+    const trace = {
+      type: "heatmap", z, customdata: raw, hoverongaps: false,
+      hovertemplate: e.brdf ? "f = %{customdata:.4g} 1/sr<extra></extra>" : "%{customdata:.2f} σ<extra></extra>",
+      colorscale: e.brdf ? "Viridis" : "RdBu", reversescale: !e.brdf,
+      zmin: e.brdf ? Math.log10(lo) : -5, zmax: e.brdf ? Math.log10(hi) : 5,
+      colorbar: { thickness: 10, title: { text: e.brdf ? "log₁₀ f" : "σ", side: "right" } },
+    };
+    const layout = {
+      title: { text: e.title, font: { size: 13 } }, margin: { l: 10, r: 10, t: 30, b: 10 }, height: 330,
+      xaxis: { visible: false, scaleanchor: "y" }, yaxis: { visible: false },
+    };
+    Plotly.react("map-" + e.key, [trace], layout, { displayModeBar: false, responsive: true });
+  }
+}
+
+// The plane of incidence: cells crossed by phi_i (negative theta_o, towards the light) and by
+// phi_i + 180 (positive, the specular side).
+function drawPlane(c, m, set, sensor) {
+  const n = sensor.cells, phi = c.phi_i[state.p];
+  const sides = [{ at: (phi + 180) % 360, sign: 1 }, { at: phi % 360, sign: -1 }];
+  const cells = [], xs = [];
+  const seen = new Set();
+  for (const s of sides)
+    for (let k = 0; k < n; ++k) {
+      if (sensor.phi_min[k] <= s.at && s.at < sensor.phi_max[k] && !seen.has(k)) {
+        seen.add(k); cells.push(k); xs.push(s.sign * 0.5 * (sensor.theta_min[k] + sensor.theta_max[k]));
+      }
+    }
+  const order = xs.map((x, i) => i).sort((a, b) => xs[a] - xs[b]);
+  const X = order.map((i) => xs[i]), C = order.map((i) => cells[i]);
+  const traces = [];
+  const get = (k) => (m[k] ? cellValues(m[k], c, n) : null);
+  const l1err = get("l1_stderr"), linferr = get("linf_stderr");
+  if (set.l1) traces.push({ x: X, y: C.map((k) => set.l1[k]), name: "simulated L1", mode: "markers",
+    error_y: { type: "data", array: C.map((k) => (l1err ? l1err[k] : 0)), visible: true } });
+  if (set.linf) traces.push({ x: X, y: C.map((k) => set.linf[k]), name: "simulated L∞", mode: "markers",
+    error_y: linferr ? { type: "data", array: C.map((k) => linferr[k]), visible: true } : undefined });
+  for (const name of c.models) {
+    const mv = get("model_" + name);
+    if (mv) traces.push({ x: X, y: C.map((k) => mv[k]), name: "model " + name, mode: "lines" });
+  }
+  Plotly.react("plane", traces, {
+    margin: { t: 20 }, xaxis: { title: "θo (°), negative towards the light" },
+    yaxis: { title: "f (1/sr)", type: "log" }, legend: { orientation: "h" },
+  }, { displaylogo: false, responsive: true });
+}
+
+// A per-incidence quantity [theta_i][phi_i][channel] along theta_i at the selected phi_i, channel.
+function alongTheta(c, values) {
+  const np = c.phi_i.length, nc = c.channels;
+  return c.theta_i.map((_, t) => values[(t * np + state.p) * nc + state.ch]);
+}
+
+function drawAlbedo(c) {
+  const a = c.albedos, traces = [];
+  const line = (key, name, errKey) => {
+    if (!a[key]) return;
+    const tr = { x: c.theta_i, y: alongTheta(c, a[key]), name, mode: "lines+markers" };
+    if (errKey && a[errKey]) tr.error_y = { type: "data", array: alongTheta(c, a[errKey]), visible: true };
+    traces.push(tr);
+  };
+  line("l1_albedo", "simulated L1", "l1_albedo_stderr");
+  line("l2plus_albedo", "simulated L2+", "l2plus_albedo_stderr");
+  line("linf_albedo", "simulated L∞", "linf_albedo_stderr");
+  line("transmitted_albedo", "simulated T", "transmitted_albedo_stderr");
+  for (const name of c.models) line("model_" + name + "_albedo", "model " + name, "model_" + name + "_albedo_stderr");
+  const x = c.theta_i[state.t];
+  Plotly.react("albedo", traces, {
+    margin: { t: 20 }, xaxis: { title: "θi (°)" }, yaxis: { title: "albedo" }, legend: { orientation: "h" },
+    shapes: [{ type: "line", x0: x, x1: x, yref: "paper", y0: 0, y1: 1, line: { dash: "dot", color: "#888" } }],
+  }, { displaylogo: false, responsive: true });
+}
+
+function drawLedger(c) {
+  const a = c.albedos, traces = [];
+  for (const [key, name] of [["ledger_absorbed", "absorbed"], ["ledger_lost", "lost"],
+                             ["ledger_capped", "capped (bounce limit)"], ["ledger_unaccounted", "unaccounted"]]) {
+    if (!a[key]) continue;
+    const tr = { x: c.theta_i, y: alongTheta(c, a[key]), name, mode: "lines+markers" };
+    if (a[key + "_stderr"]) tr.error_y = { type: "data", array: alongTheta(c, a[key + "_stderr"]), visible: true };
+    traces.push(tr);
+  }
+  Plotly.react("ledger", traces, {
+    margin: { t: 20 }, xaxis: { title: "θi (°)" }, yaxis: { title: "fraction of the incident power" },
+    legend: { orientation: "h" },
+  }, { displaylogo: false, responsive: true });
+}
+
+function drawNdf(c) {
+  const nd = c.ndf, traces = [];
+  traces.push({ x: nd.target.theta, y: nd.target.phi0, name: "target, φ 0°", mode: "lines" });
+  traces.push({ x: nd.target.theta, y: nd.target.phi90, name: "target, φ 90°", mode: "lines", line: { dash: "dash" } });
+  if (nd.measured) {
+    traces.push({ x: nd.measured.theta, y: nd.measured.phi0, name: "surface, φ 0°", mode: "lines" });
+    traces.push({ x: nd.measured.theta, y: nd.measured.phi90, name: "surface, φ 90°", mode: "lines", line: { dash: "dash" } });
+  }
+  $("ndf-note").textContent = "Target: " + nd.target_description + ". " +
+    (nd.measured ? "Surface: the facet NDF of " + nd.measured_file + " (the first surface)." : nd.measured_note + ".");
+  Plotly.react("ndf", traces, {
+    margin: { t: 20 }, xaxis: { title: "θm (°)" }, yaxis: { title: "D(m) (1/sr)", type: "log" },
+    legend: { orientation: "h" },
+  }, { displaylogo: false, responsive: true });
+}
+
+function draw() {
+  const c = D.cases[state.c], sensor = D.sensors[c.sensor], m = maps(state.c);
+  $("incidence").textContent = c.name + " at θi " + c.theta_i[state.t] + "°, φi " + c.phi_i[state.p] + "°";
+  const set = mapSet(c, m, sensor.cells);
+  drawMaps(c, set, sensor);
+  drawPlane(c, m, set, sensor);
+  drawAlbedo(c);
+  drawLedger(c);
+  drawNdf(c);
+  document.body.dataset.drawn = c.name + "|" + state.t + "|" + state.p + "|" + state.ch;
+}
+
+summary();
+fillSelect($("case"), D.cases.map((c) => c.name), 0);
+$("case").addEventListener("change", (e) => { state.c = +e.target.value; caseChanged(); });
+$("theta").addEventListener("change", (e) => { state.t = +e.target.value; draw(); });
+$("phi").addEventListener("change", (e) => { state.p = +e.target.value; draw(); });
+$("channel").addEventListener("change", (e) => { state.ch = +e.target.value; draw(); });
+if (D.images.length) {
+  for (const im of D.images) {
+    const fig = document.createElement("figure");
+    fig.innerHTML = "<img alt=''><figcaption class='note'></figcaption>";
+    fig.querySelector("img").src = im.src;
+    fig.querySelector("figcaption").textContent = im.name;
+    $("images").appendChild(fig);
+  }
+} else {
+  $("images-section").style.display = "none";
+}
+caseChanged();
