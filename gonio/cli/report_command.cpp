@@ -35,9 +35,10 @@ int report(const ReportArgs& a) {
     }
     files.commit();
     if (!a.quiet)
-        std::printf("wrote %s (%.1f MB, %.2f s; open it in a browser)\n", a.output.c_str(),
-                    page.size() / 1e6,
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        std::printf(
+            "wrote %s (%.1f MB, %.2f s; open it in a browser)\n", a.output.c_str(),
+            page.size() / 1e6,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     return 0;
 }
 
@@ -46,7 +47,8 @@ std::function<int()> setup(CLI::App& app, const CliContext&) {
     app.add_option("file", a->source.result, "HDF5 result file of gonio run or gonio model")
         ->required();
     app.add_option("-o,--output", a->output, "The HTML page")->required();
-    app.add_option("--image", a->source.images, "A PNG to show with it (gonio render's; repeatable)");
+    app.add_option("--image", a->source.images,
+                   "A PNG to show with it (gonio render's; repeatable)");
     app.add_flag("--overwrite", a->overwrite, "Replace an existing output file");
     app.add_flag("-q,--quiet", a->quiet, "Print nothing on success");
     return [a] { return report(*a); };

@@ -218,7 +218,7 @@ class Loader {
         TableReader trace = reader(t, path, "trace");
         c.trace = read_trace(trace);
         c.model = read_models(reader(t, path, "model"), c.material, c.ndf, c.trace.rays,
-                              c.trace.max_bounces);
+                              c.trace.max_bounces, c.trace.backend);
         TableReader surface = reader(t, path, "surface");
         c.surface = read_surface(surface, seed_, *c.ndf, c.trace.target.active());
         return c;

@@ -9,6 +9,7 @@
 // Its methods' errors do not name the file: the caller does (write_result).
 #include "gonio/config/config.h"
 #include "gonio/io/hdf5_handles.h"
+#include "gonio/io/sealed_file.h"
 #include "gonio/io/model_result.h"
 #include "gonio/io/simulation_result.h"
 #include "sensor/beckers_sensor.h"
@@ -23,7 +24,7 @@ class ResultWriter {
   public:
     // Throws std::runtime_error if `path` exists and !overwrite.
     ResultWriter(std::string path, bool overwrite);
-    ~ResultWriter(); // removes the temporary file unless commit() succeeded
+    ~ResultWriter() = default; // the temporary file is removed unless commit() succeeded
     ResultWriter(const ResultWriter&) = delete;
     ResultWriter& operator=(const ResultWriter&) = delete;
 
@@ -48,7 +49,7 @@ class ResultWriter {
                        const std::vector<std::pair<std::string, double>>& phase_seconds);
     // Closes the file and renames it to its final path.
     void commit();
-    const std::string& path() const { return path_; }
+    const std::string& path() const { return file_.path(); }
 
     static std::string conventions();
 
@@ -59,9 +60,7 @@ class ResultWriter {
     // `tolerance`: the configured quadrature tolerance; a model that reached less is marked.
     void write_models(CaseGroup& g, const std::vector<ModelResult>& models, double tolerance);
 
-    std::string path_, tmp_path_;
-    h5::Handle file_;
-    bool committed_ = false;
+    SealedFile file_;
 };
 
 } // namespace gonio

@@ -63,8 +63,7 @@ void InterfacedLambertianModel::body_cosine(const Vec3& i, const Vec3& o, double
     if (masking_ != MaskingForm::v_cavity) {
         const double li = ndf_.lambda(i), lo = ndf_.lambda(o);
         if (std::isinf(li) || std::isinf(lo)) return;
-        smith = masking_ == MaskingForm::height_correlated ? 1.0 / (1.0 + li + lo) // R19 Eq. 9
-                                                           : 1.0 / ((1.0 + li) * (1.0 + lo));
+        smith = smith_g2(li, lo, i, o, masking_); // R19 Eq. 3, 9; Heitz 2014 Eq. 101
     }
     for (size_t n = 0; n < nodes_.size(); ++n) {
         const Vec3& m = nodes_[n];

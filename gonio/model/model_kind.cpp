@@ -7,8 +7,8 @@ namespace gonio {
 namespace {
 const Key kMasking =
     Key::string("masking", enum_names<MaskingForm>(),
-                "G2 of Model L1 and of the IL model: Smith [R19 Eq. 9, 3] or Torrance-Sparrow "
-                "[M18 Eq. 15]")
+                "G2 of Model L1 and of the IL model: Smith [R19 Eq. 9, 3], Smith "
+                "height-direction-correlated [Heitz 2014 Eq. 101] or Torrance-Sparrow [M18 Eq. 15]")
         .fallback(name_of(MaskingForm::height_correlated));
 const Key kQuadrature =
     Key::integer("quadrature", {1, 64}, "Gauss-Legendre points per axis inside each cell")
@@ -34,12 +34,13 @@ const Key& models_key() {
 const std::vector<const ModelKind*>& model_kinds() {
     static const std::vector<const ModelKind*> kinds = {
         &l1_model_kind(), &il_model_kind(), &vcavity_model_kind(), &ashikhmin_model_kind(),
-        &pbrdf_model_kind()};
+        &pbrdf_model_kind(), &smith_measured_ndf_model_kind(), &measured_g1_model_kind(),
+        &measured_model_kind()};
     return kinds;
 }
 
 ModelSettings read_models(TableReader r, const FacetSpec& facets, std::shared_ptr<const Ndf> ndf,
-                          long long trace_rays, int max_bounces) {
+                          long long trace_rays, int max_bounces, const TraceBackendKind* backend) {
     ModelSettings s;
     s.masking = enum_named<MaskingForm>(r.string(kMasking));
     s.quadrature.points = static_cast<int>(r.integer(kQuadrature));
@@ -48,8 +49,8 @@ ModelSettings read_models(TableReader r, const FacetSpec& facets, std::shared_pt
     const std::vector<std::string> names =
         r.string_list(models_key().name, models_key().choices,
                       std::vector<std::string>{facets.diffuse ? "il" : "l1"});
-    const ModelContext context{facets,       std::move(ndf), s.masking,
-                               s.quadrature, trace_rays,     max_bounces};
+    const ModelContext context{facets,     std::move(ndf), s.masking, s.quadrature,
+                               trace_rays, max_bounces,    backend};
     // Every chosen kind reads its keys even with evaluate = false, so that they count as used.
     for (const std::string& name : names)
         s.models.push_back(find_named(model_kinds(), name, "model").create(r, context));

@@ -9,6 +9,7 @@
 #include "gonio/model/brdf_model.h"
 #include "gonio/model/cell_integrator.h"
 #include "gonio/model/cell_model.h"
+#include "gonio/trace/trace_backend.h"
 #include "heightfield/heightfield.h"
 #include "heightfield/ndf/ndf.h"
 
@@ -26,8 +27,9 @@ struct ModelContext {
     std::shared_ptr<const Ndf> ndf;
     MaskingForm masking;
     CellQuadrature quadrature;
-    long long trace_rays; // the case's rays per incidence (the V-cavity's default)
-    int max_bounces;      // the case's bounce cap
+    long long trace_rays;            // the case's rays per incidence (the V-cavity's default)
+    int max_bounces;                 // the case's bounce cap
+    const TraceBackendKind* backend; // the case's (models that trace the surface)
 };
 
 struct ModelChoice {
@@ -67,7 +69,7 @@ struct ModelSettings {
     std::vector<ModelChoice> models; // empty with evaluate = false
 };
 ModelSettings read_models(TableReader r, const FacetSpec& facets, std::shared_ptr<const Ndf> ndf,
-                          long long trace_rays, int max_bounces);
+                          long long trace_rays, int max_bounces, const TraceBackendKind* backend);
 std::vector<KeyGroup> model_key_groups();
 std::vector<KeyGroup> ashikhmin_key_groups(); // the nested table model.ashikhmin
 
@@ -76,5 +78,9 @@ const ModelKind& il_model_kind();
 const ModelKind& vcavity_model_kind();
 const ModelKind& ashikhmin_model_kind();
 const ModelKind& pbrdf_model_kind();
+// The decomposition of simulated L1 - Model L1 (gonio/masking/surface_point_model.cpp).
+const ModelKind& smith_measured_ndf_model_kind();
+const ModelKind& measured_g1_model_kind();
+const ModelKind& measured_model_kind();
 
 } // namespace gonio

@@ -4,7 +4,6 @@
 // target); the page itself is the page template (report_page.html, report.js) with plotly.js from
 // Debian's python3-plotly and the data embedded, so it opens without a network.
 #include <nlohmann/json.hpp>
-
 #include <string>
 #include <vector>
 

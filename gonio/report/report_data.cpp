@@ -1,7 +1,6 @@
-#include "gonio/report/report.h"
-
 #include "core/math.h"
 #include "gonio/io/result_reader.h"
+#include "gonio/report/report.h"
 #include "gonio/table/result_case.h"
 #include "heightfield/ndf/ndf_family.h"
 #include "sensor/beckers_sensor.h"
@@ -29,7 +28,8 @@ std::string base64(const unsigned char* bytes, size_t n) {
     std::string out;
     out.reserve((n + 2) / 3 * 4);
     for (size_t i = 0; i < n; i += 3) {
-        const unsigned v = unsigned(bytes[i]) << 16 | (i + 1 < n ? unsigned(bytes[i + 1]) << 8 : 0) |
+        const unsigned v = unsigned(bytes[i]) << 16 |
+                           (i + 1 < n ? unsigned(bytes[i + 1]) << 8 : 0) |
                            (i + 2 < n ? unsigned(bytes[i + 2]) : 0);
         out += alphabet[v >> 18 & 63];
         out += alphabet[v >> 12 & 63];
@@ -184,8 +184,8 @@ json case_json(const ResultSummary& summary, const CaseSummary& s) {
             ndf["measured_note"] = std::string("the surface could not be read: ") + e.what();
         }
     } else {
-        ndf["measured_note"] = c.simulated ? "the surface is no longer in the cache"
-                                           : "no surface (gonio model)";
+        ndf["measured_note"] =
+            c.simulated ? "the surface is no longer in the cache" : "no surface (gonio model)";
     }
     out["ndf"] = ndf;
     return out;

@@ -33,10 +33,14 @@ size_t substitute(std::string& page, size_t from, const std::string& marker,
 std::string escape_html(const std::string& s) {
     std::string out;
     for (char c : s) {
-        if (c == '<') out += "&lt;";
-        else if (c == '>') out += "&gt;";
-        else if (c == '&') out += "&amp;";
-        else out += c;
+        if (c == '<')
+            out += "&lt;";
+        else if (c == '>')
+            out += "&gt;";
+        else if (c == '&')
+            out += "&amp;";
+        else
+            out += c;
     }
     return out;
 }
@@ -46,9 +50,12 @@ std::string escape_html(const std::string& s) {
 std::string report_page(const nlohmann::json& data, const std::string& plotly_js) {
     std::string page = report_assets::kPage;
     // Markers are replaced in page order, each searched after the text put in before it.
-    size_t at = substitute(page, 0, "@TITLE@", escape_html(data.value("file", std::string("result"))));
+    size_t at =
+        substitute(page, 0, "@TITLE@", escape_html(data.value("file", std::string("result"))));
     at = substitute(page, at, "@PLOTLY@", script_safe(plotly_js));
-    at = substitute(page, at, "@DATA@", script_safe(data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)));
+    at = substitute(
+        page, at, "@DATA@",
+        script_safe(data.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)));
     substitute(page, at, "@APP@", report_assets::kApp);
     return page;
 }
@@ -58,8 +65,9 @@ std::string read_plotly_js() {
     const std::string path = env && *env ? env : GONIO_PLOTLY_JS_PATH;
     std::ifstream in(path, std::ios::binary);
     if (!in)
-        throw std::runtime_error(path + ": cannot read plotly.js (Debian's python3-plotly ships it; "
-                                        "$GONIO_PLOTLY_JS names another copy)");
+        throw std::runtime_error(path +
+                                 ": cannot read plotly.js (Debian's python3-plotly ships it; "
+                                 "$GONIO_PLOTLY_JS names another copy)");
     return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 

@@ -1,5 +1,7 @@
 #include "heightfield/ndf/ndf.h"
 
+#include "core/check.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -26,10 +28,28 @@ double Ndf::G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form,
     if (im <= 0 || om <= 0) return 0.0;
     if (form == MaskingForm::v_cavity) // M18 Eq. 15: exact for V-grooves along m's azimuth
         return std::min({1.0, 2.0 * i.z * m.z / im, 2.0 * o.z * m.z / om});
-    const double li = lambda_i, lo = lambda(o);
+    return smith_g2(lambda_i, lambda(o), i, o, form);
+}
+
+double smith_g2(double li, double lo, const Vec3& i, const Vec3& o, MaskingForm form) {
     if (std::isinf(li) || std::isinf(lo)) return 0.0;
-    if (form == MaskingForm::height_correlated) return 1.0 / (1.0 + li + lo); // R19 Eq. 9
-    return 1.0 / ((1.0 + li) * (1.0 + lo));                                   // R19 Eq. 3
+    switch (form) {
+    case MaskingForm::height_correlated: return 1.0 / (1.0 + li + lo); // R19 Eq. 9
+    case MaskingForm::uncorrelated: return 1.0 / ((1.0 + li) * (1.0 + lo)); // R19 Eq. 3
+    case MaskingForm::height_direction_correlated: {
+        // Heitz 2014 Eq. 101: phi in [0, pi] between the projections of i and o (a direction along
+        // the normal has Lambda 0, so its azimuth does not matter).
+        const double ri = std::hypot(i.x, i.y), ro = std::hypot(o.x, o.y);
+        double phi = 0;
+        if (ri > 0 && ro > 0)
+            phi = std::acos(std::clamp((i.x * o.x + i.y * o.y) / (ri * ro), -1.0, 1.0));
+        const double l = 4.41 * phi / (4.41 * phi + 1.0); // van Ginneken et al. 1998
+        return 1.0 / (1.0 + std::max(li, lo) + l * std::min(li, lo));
+    }
+    case MaskingForm::v_cavity: break;
+    }
+    GONIO_CHECK_MSG(false, "smith_g2: the V-cavity form is not a Smith form");
+    return 0.0;
 }
 
 double Ndf::pdf_m(const Vec3& m) const {

@@ -16,12 +16,20 @@ enum class MaskingForm {
     height_correlated, // G2 = 1 / (1 + Lambda(i) + Lambda(o))       [R19 Eq. 9]
     uncorrelated,      // G2 = G1(i) G1(o)                             [R19 Eq. 3]
     v_cavity,          // Torrance-Sparrow: min(1, 2 n.m n.i / i.m, 2 n.m n.o / o.m) [M18 Eq. 15]
+    // G2 = 1 / (1 + max(Li, Lo) + l(phi) min(Li, Lo)), l(phi) = 4.41 phi / (4.41 phi + 1), phi the
+    // azimuth between i and o [Heitz 2014 Eq. 101, after van Ginneken et al. 1998]
+    height_direction_correlated,
 };
 template <>
 struct EnumNames<MaskingForm> {
     static constexpr const char* what = "masking";
-    static constexpr const char* names[] = {"height-correlated", "uncorrelated", "v-cavity"};
+    static constexpr const char* names[] = {"height-correlated", "uncorrelated", "v-cavity",
+                                            "height-direction-correlated"};
 };
+
+// Smith's joint masking-shadowing of a facet facing both i and o, from Lambda(i) and Lambda(o), in
+// one of the Smith forms (not v_cavity). Infinite Lambdas give 0.
+double smith_g2(double lambda_i, double lambda_o, const Vec3& i, const Vec3& o, MaskingForm form);
 
 class Ndf {
   public:

@@ -1,0 +1,248 @@
+// The decomposition of simulated L1 against Model L1 (gonio masking's models): single scattering
+// written as F D_s(h) G(i, o, h) / (4 |i.n| |o.n|) with the surface's own facet NDF D_s and three
+// choices of G, each estimated over points drawn uniformly by area on the case's first surface (a
+// point's facet normal is distributed as D_s(m) dm). For a mirror facet the exit is o = reflect(i,
+// m), and the energy into a cell is
+//   E_cell = (A_micro / A_macro) E_points[ chi(o in cell) <i, m>+ F(i.m) G ] / cos theta_i,
+// the h-integral of Model L1 [R19 Eq. 2] after the change of variables dw_o = 4 <i, h> dw_h. With
+//   smith_measured_ndf: G = Smith's G2 (the case's masking form) from Lambda_s, the Lambda of D_s;
+//   measured_g1: G = G1(i, m) G1(o, m), measured: the visibility towards i of one point times the
+//     visibility towards o of another point whose normal falls in the same fine bin (independent
+//     given m: the product of the two masking probabilities);
+//   measured: G = the joint visibility V(i) V(o) of the same point, the surface's G2(i, o, m).
+// The chain Model L1 -> smith_measured_ndf -> measured_g1 -> measured splits simulated L1 - Model
+// L1 into the NDF's fidelity, the facet-dependence of masking and the correlation of masking with
+// shadowing; `measured` and simulated L1 estimate the same quantity of the same surface.
+#include "core/batch_means.h"
+#include "core/parallel.h"
+#include "core/random.h"
+#include "gonio/model/model_kind.h"
+#include "gonio/trace/scene.h"
+#include "heightfield/ndf/ndf_table.h"
+#include "heightfield/ndf/tabulated_ndf.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+namespace gonio {
+
+namespace {
+
+enum class PointG { smith_measured_ndf, measured_g1, measured };
+
+const Key kPoints = Key::integer("surface_points", {1024, 1e12},
+                                 "smith_measured_ndf, measured_g1, measured: facet points per "
+                                 "incidence")
+                        .note_default("`trace.rays`");
+
+constexpr int kBatches = 16;
+constexpr int kPairingBins = 16384; // measured_g1: the bins a point's partner shares
+
+class SurfacePointModel final : public CellModel {
+  public:
+    SurfacePointModel(PointG g, const HeightField& surface, const TraceBackendKind& backend,
+                      FresnelTerm fresnel, MaskingForm masking, long long points)
+        : g_(g), surface_(surface), scene_(surface_, backend), fresnel_(std::move(fresnel)),
+          masking_(masking), points_(points),
+          facets_(facet_ndf_table(surface_, 90, 72), "the first surface", "height_map") {
+        // Triangles by area (both of a cell project to half a cell: area = that / m.z).
+        const int n = surface_.n;
+        cdf_.resize(size_t(2) * n * n);
+        double total = 0;
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x)
+                for (int t = 0; t < 2; ++t) {
+                    double p, q;
+                    surface_.triangle_slopes(x, y, t, p, q);
+                    total += std::sqrt(1.0 + p * p + q * q);
+                    cdf_[(size_t(y) * n + x) * 2 + t] = total;
+                }
+        area_ratio_ = total / (2.0 * n * n);
+        for (double& c : cdf_) c /= total;
+    }
+
+    ModelIncidence evaluate(const Vec3& wi, const BeckersSensor& sensor, std::uint64_t seed,
+                            std::uint64_t stream) const override {
+        const auto start = std::chrono::steady_clock::now();
+        const int nc = fresnel_.channels(), cells = sensor.cell_count();
+        const long long per_batch = (points_ + kBatches - 1) / kBatches;
+        std::vector<double> batches(size_t(kBatches) * cells * nc, 0.0);
+        const double lambda_i = facets_.lambda(wi);
+        const BeckersSensor pairing(kPairingBins);
+        parallel_for<int>(0, kBatches, [&](int b) {
+            Rng rng{seed, stream, 0x73706d6full /* "spmo" */, std::uint64_t(b)};
+            std::vector<Vec3> pos(static_cast<size_t>(per_batch)), normal(pos.size());
+            for (long long k = 0; k < per_batch; ++k) draw(rng, pos[size_t(k)], normal[size_t(k)]);
+            // measured_g1: each point's partner is the next point of the batch in its fine bin.
+            std::vector<long long> partner;
+            if (g_ == PointG::measured_g1) partner = partners(normal, pairing);
+            const double eps = scene_.epsilon(), scale = area_ratio_ / (wi.z * double(per_batch));
+            double* out = &batches[size_t(b) * cells * nc];
+            double F[64];
+            for (long long k = 0; k < per_batch; ++k) {
+                const Vec3& m = normal[size_t(k)];
+                const double im = dot(wi, m);
+                if (im <= 0) continue;
+                const Vec3 o = 2.0 * im * m - wi; // mirror reflection about the facet
+                if (o.z <= 0) continue;           // into the surface: not single scattering
+                double g = 0;
+                auto sees = [&](long long at, const Vec3& w) {
+                    if (dot(w, normal[size_t(at)]) <= 0) return false;
+                    return scene_.trace(pos[size_t(at)] + eps * normal[size_t(at)], w).kind ==
+                           SurfaceHit::escaped_up;
+                };
+                switch (g_) {
+                case PointG::smith_measured_ndf:
+                    g = smith_g2(lambda_i, facets_.lambda(o), wi, o, masking_);
+                    break;
+                case PointG::measured_g1:
+                    g = sees(k, wi) && sees(partner[size_t(k)], o) ? 1.0 : 0.0;
+                    break;
+                case PointG::measured:
+                    g = sees(k, wi) && sees(k, o) ? 1.0 : 0.0;
+                    break;
+                }
+                if (g == 0) continue;
+                fresnel_.eval(im, F);
+                double* cell = out + size_t(sensor.lookup(o)) * nc;
+                for (int c = 0; c < nc; ++c) cell[c] += scale * im * F[c] * g;
+            }
+        });
+        ModelIncidence r;
+        r.batches = kBatches;
+        r.energy.assign(size_t(cells) * nc, 0.0);
+        for (int b = 0; b < kBatches; ++b)
+            for (size_t k = 0; k < r.energy.size(); ++k)
+                r.energy[k] += batches[size_t(b) * r.energy.size() + k] / kBatches;
+        r.energy_batches = std::move(batches);
+        // Albedo batches: each batch's cells summed.
+        std::vector<double> albedo_batches(size_t(kBatches) * nc, 0.0);
+        for (int b = 0; b < kBatches; ++b)
+            for (int c = 0; c < cells; ++c)
+                for (int k = 0; k < nc; ++k)
+                    albedo_batches[size_t(b) * nc + k] +=
+                        r.energy_batches[(size_t(b) * cells + c) * nc + k];
+        r.albedo_stderr = batch_stderr(albedo_batches, kBatches);
+        // Single scattering only: order 1 is everything.
+        r.l1_energy = r.energy;
+        r.l1_albedo.assign(size_t(nc), 0.0);
+        for (int c = 0; c < cells; ++c)
+            for (int k = 0; k < nc; ++k) r.l1_albedo[size_t(k)] += r.energy[size_t(c) * nc + k];
+        r.l2_albedo.assign(size_t(nc), 0.0);
+        r.l2plus_albedo.assign(size_t(nc), 0.0);
+        r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return r;
+    }
+
+  private:
+    void draw(Rng& rng, Vec3& position, Vec3& normal) const {
+        const size_t k =
+            size_t(std::lower_bound(cdf_.begin(), cdf_.end(), rng.uniform()) - cdf_.begin());
+        const size_t tri = std::min(k, cdf_.size() - 1);
+        const int t = int(tri % 2), cell = int(tri / 2), x = cell % surface_.n,
+                  y = cell / surface_.n;
+        double u = rng.uniform(), v = rng.uniform();
+        if (u + v > 1) u = 1 - u, v = 1 - v;
+        // Triangle A: (x, y), (x+1, y), (x, y+1); B: (x+1, y+1), (x, y+1), (x+1, y).
+        const double gx = t == 0 ? x + u : x + 1 - u, gy = t == 0 ? y + v : y + 1 - v;
+        double p, q;
+        surface_.triangle_slopes(x, y, t, p, q);
+        position = {gx * surface_.spacing, gy * surface_.spacing, surface_.height_at_grid(gx, gy)};
+        normal = HeightField::normal_of_slopes(p, q);
+    }
+
+    // The next point in the same bin (cyclically; itself when alone in it).
+    static std::vector<long long> partners(const std::vector<Vec3>& normal,
+                                           const BeckersSensor& bins) {
+        const size_t n = normal.size();
+        std::vector<int> bin(n);
+        for (size_t k = 0; k < n; ++k) bin[k] = bins.lookup(normal[k]);
+        std::vector<long long> order(n);
+        std::iota(order.begin(), order.end(), 0);
+        std::stable_sort(order.begin(), order.end(),
+                         [&](long long a, long long b) { return bin[size_t(a)] < bin[size_t(b)]; });
+        std::vector<long long> partner(n);
+        size_t first = 0;
+        for (size_t k = 0; k < n; ++k) {
+            if (k > 0 && bin[size_t(order[k])] != bin[size_t(order[k - 1])]) first = k;
+            const bool last = k + 1 == n || bin[size_t(order[k + 1])] != bin[size_t(order[k])];
+            partner[size_t(order[k])] = last ? order[first] : order[k + 1];
+        }
+        return partner;
+    }
+
+    PointG g_;
+    HeightField surface_;
+    Scene scene_;
+    FresnelTerm fresnel_;
+    MaskingForm masking_;
+    long long points_;
+    TabulatedNdf facets_; // D_s as a table (1 degree by 5): its Lambda for smith_measured_ndf
+    std::vector<double> cdf_;
+    double area_ratio_ = 0;
+};
+
+ModelChoice point_model(PointG g, const char* name, const std::string& what, TableReader& r,
+                        const ModelContext& c) {
+    if (c.facets.diffuse)
+        r.fail("models", std::string("\"") + name + "\" is a specular model; for " + c.facets.type +
+                             " facets use \"il\"");
+    ModelChoice m;
+    m.name = name;
+    m.compared_with = ModelTarget::l1;
+    m.needs_surface = true;
+    m.monte_carlo = true;
+    const long long points = r.integer(kPoints.name, kPoints.range, c.trace_rays);
+    m.description = what + ", over " + std::to_string(points) +
+                    " points of the case's first surface per incidence";
+    m.build = [g, points, fresnel = c.facets.fresnel, masking = c.masking,
+               backend = c.backend](const HeightField* surface) -> std::unique_ptr<CellModel> {
+        return std::make_unique<SurfacePointModel>(g, *surface, *backend, fresnel, masking, points);
+    };
+    return m;
+}
+
+} // namespace
+
+const ModelKind& smith_measured_ndf_model_kind() {
+    static const ModelKind k{
+        "smith_measured_ndf",
+        "Model L1 on the surface's own facet NDF D_s, Smith G2 from its Lambda [R19 Eq. 2, 9]",
+        {kPoints},
+        [](TableReader& r, const ModelContext& c) {
+            return point_model(PointG::smith_measured_ndf, "smith_measured_ndf",
+                               "single scattering with D_s and Smith's G2 from Lambda_s", r, c);
+        }};
+    return k;
+}
+
+const ModelKind& measured_g1_model_kind() {
+    static const ModelKind k{
+        "measured_g1",
+        "single scattering with D_s and the measured G1(i, m) G1(o, m) (masking and shadowing "
+        "uncorrelated)",
+        {},
+        [](TableReader& r, const ModelContext& c) {
+            return point_model(PointG::measured_g1, "measured_g1",
+                               "single scattering with D_s and the measured G1(i, m) G1(o, m)", r,
+                               c);
+        }};
+    return k;
+}
+
+const ModelKind& measured_model_kind() {
+    static const ModelKind k{
+        "measured",
+        "single scattering with D_s and the measured joint G2(i, o, m)",
+        {},
+        [](TableReader& r, const ModelContext& c) {
+            return point_model(PointG::measured, "measured",
+                               "single scattering with D_s and the measured joint G2(i, o, m)", r,
+                               c);
+        }};
+    return k;
+}
+
+} // namespace gonio
