@@ -33,7 +33,8 @@ def make_result(gonio, work):
     cmd = [gonio, "run", "configs/quickstart.toml", "-o", out, "--overwrite", "--quiet",
            "--no-cache", "--set", "trace.rays=65536", "--set", "surface.realisations=1",
            "--set", "beam.theta_i=[0,45,70]",
-           "--set", 'case.ggx_0.3.material={type = "dielectric", eta = 1.5}']
+           "--set", 'case.ggx_0.3.material={type = "dielectric", eta = 1.5}',
+           "--set", 'case.beckmann_0.5.model.models=["l1", "smith_measured_ndf", "measured_g1", "measured"]']
     here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     subprocess.run(cmd, check=True, cwd=here)
     return out
@@ -76,6 +77,46 @@ return [s, n];
 """
 
 
+MASKING_CONFIG = """seed = 2
+[beam]
+theta_i = [30, 75]
+phi_i = 0
+[surface]
+size = 64
+iterations = 60
+[[case]]
+name = "ggx"
+ndf = { type = "ggx", alpha = 0.4 }
+"""
+
+
+def masking_page(driver, a):
+    """gonio masking's file as a page: every view drawn, the incidence selector redraws G2."""
+    cfg, out = os.path.join(a.work, "masking.toml"), os.path.join(a.work, "masking.h5")
+    with open(cfg, "w") as f:
+        f.write(MASKING_CONFIG)
+    subprocess.run([a.gonio, "masking", cfg, "-o", out, "--overwrite", "--quiet", "--no-cache",
+                    "--points", "8192", "--g2-points", "2048"], check=True)
+    page = os.path.join(os.path.abspath(a.work), "masking.html")
+    subprocess.run([a.gonio, "report", out, "-o", page, "--overwrite", "--quiet"], check=True)
+    driver.get("file://" + page)
+    WebDriverWait(driver, 60).until(lambda d: drawn(d) != "")
+    for view in ["m-g1", "m-furnace", "m-height", "m-g2"]:
+        fp = driver.execute_script(FINGERPRINT, view)
+        if not fp or fp[1] == 0:
+            fail("masking page: " + view + ": nothing drawn")
+    before = driver.execute_script(FINGERPRINT, "m-g2")
+    state = drawn(driver)
+    Select(driver.find_element("id", "m-incidence")).select_by_index(1)
+    WebDriverWait(driver, 60).until(lambda d: drawn(d) != state)
+    if driver.execute_script(FINGERPRINT, "m-g2") == before:
+        fail("masking page: G2 did not change with the incidence")
+    errors = console_errors(driver)
+    if errors:
+        fail("masking page: console errors: " + json.dumps(errors)[:2000])
+    driver.save_screenshot(os.path.join(a.work, "masking.png"))
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("gonio")
@@ -105,7 +146,10 @@ def main():
         if "map-l1" not in maps or not any(m.startswith("map-model_") for m in maps) or \
                 not any(m.startswith("map-sigma_") for m in maps):
             fail("the maps drawn are " + str(maps))
-        for view in ["plane", "albedo", "ledger", "ndf"] + maps:
+        views = ["plane", "albedo", "ledger", "ndf"] + maps
+        if not a.result:
+            views.append("decomposition")  # the first case has the decomposition's models
+        for view in views:
             fp = driver.execute_script(FINGERPRINT, view)
             if not fp or fp[1] == 0:
                 fail(view + ": nothing drawn")
@@ -148,11 +192,14 @@ def main():
             driver.save_screenshot(a.screenshot)
         else:
             driver.save_screenshot(os.path.join(a.work, "report.png"))
+        if not a.result:
+            masking_page(driver, a)
     finally:
         driver.quit()
     print(f"check_report: ok: {os.path.basename(result)} -> {size / 1e6:.1f} MB page written in "
           f"{written:.2f} s, drawn in the browser in {load:.2f} s; {len(maps)} maps; a theta_i change "
-          f"redrawn in {redraw:.2f} s; the case selector redraws; no console errors")
+          f"redrawn in {redraw:.2f} s; the case selector redraws; no console errors"
+          + ("" if a.result else "; the decomposition and a gonio masking page drawn"))
 
 
 if __name__ == "__main__":

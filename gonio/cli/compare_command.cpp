@@ -3,6 +3,7 @@
 #include "gonio/io/simulation_result.h"
 #include "gonio/model/cell_model.h"
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -10,6 +11,53 @@
 namespace gonio {
 
 namespace {
+// With the decomposition models (gonio/masking/surface_point_model.cpp), each step's share of
+// simulated L1 - Model L1 with its standard error (the two sides' errors combined: the models share
+// their facet points, so this is conservative), and what is left.
+void print_decomposition(const ResultSummary& s) {
+    const std::vector<std::string> chain{"l1", "smith_measured_ndf", "measured_g1", "measured"};
+    bool header = false;
+    for (const CaseSummary& c : s.cases) {
+        bool all = c.albedos.count("l1_albedo") > 0;
+        for (const std::string& m : chain) all = all && c.albedos.count("model_" + m + "_albedo");
+        if (!all) continue;
+        if (!header)
+            std::printf(
+                "\nSimulated L1 - Model L1, step by step: the NDF's fidelity (Smith with the "
+                "surface's D_s), the facet dependence of masking (measured G1(i,m) G1(o,m)), "
+                "the correlation of masking with shadowing (measured joint G2), what is left\n"
+                "%-20s %7s %7s %3s %18s %18s %18s %18s %18s\n",
+                "case", "theta_i", "phi_i", "ch", "gap", "NDF fidelity", "G1 of m", "correlation",
+                "left");
+        header = true;
+        auto at = [&](const std::string& name, size_t i) {
+            const auto it = c.albedos.find(name);
+            return it == c.albedos.end() ? 0.0 : it->second[i];
+        };
+        auto cell = [](double v, double e) {
+            char text[48];
+            std::snprintf(text, sizeof text, "%+.5f±%.1e", v, e);
+            std::printf(" %18s", text);
+        };
+        const size_t np = c.phi_i_deg.size(), nc = size_t(c.channels);
+        for (size_t i = 0; i < c.theta_i_deg.size() * np * nc; ++i) {
+            const size_t t = i / (np * nc), p = (i / nc) % np;
+            std::printf("%-20s %7.2f %7.2f %3zu", c.name.c_str(), c.theta_i_deg[t], c.phi_i_deg[p],
+                        i % nc);
+            const double sim = at("l1_albedo", i), sim_e = at("l1_albedo_stderr", i);
+            cell(sim - at("model_l1_albedo", i), sim_e);
+            for (size_t k = 1; k < chain.size(); ++k) {
+                const std::string a = "model_" + chain[k - 1], b = "model_" + chain[k];
+                cell(at(b + "_albedo", i) - at(a + "_albedo", i),
+                     std::hypot(at(a + "_albedo_stderr", i), at(b + "_albedo_stderr", i)));
+            }
+            cell(sim - at("model_measured_albedo", i),
+                 std::hypot(sim_e, at("model_measured_albedo_stderr", i)));
+            std::printf("\n");
+        }
+    }
+}
+
 int compare(const std::string& path) {
     const ResultSummary s = read_result_summary(path);
     // One row per incidence, channel and model: the model's albedo against the simulated
@@ -67,6 +115,7 @@ int compare(const std::string& path) {
                             std::printf(" %10s\n", "-");
                     }
     }
+    print_decomposition(s);
     // What the errors above include: with one surface, only the rays.
     for (const CaseSummary& c : s.cases)
         if (auto scope = c.attributes.find("error_scope");

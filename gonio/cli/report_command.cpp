@@ -24,7 +24,10 @@ int report(const ReportArgs& a) {
         throw UsageError(a.output + ": the output is the input");
     refuse_existing(a.output, a.overwrite);
     const std::string plotly = read_plotly_js(); // before any work: a missing library fails now
-    const std::string page = report_page(report_data(a.source), plotly);
+    nlohmann::json data = file_format_of(a.source.result).rfind("gonio-masking", 0) == 0
+                              ? masking_report_data(a.source.result)
+                              : report_data(a.source);
+    const std::string page = report_page(data, plotly);
     OutputSet files(a.overwrite);
     const std::string tmp = files.add(a.output);
     {

@@ -18,6 +18,12 @@ struct ReportSource {
 // read (the readers' checks: shapes against axes, finite values).
 nlohmann::json report_data(const ReportSource& source);
 
+// The format a file says it has ("gonio-result 2", "gonio-masking 1"; "" when it says none).
+// Throws std::runtime_error when it is missing, damaged (its checksum) or no HDF5 file.
+std::string file_format_of(const std::string& path);
+// The data of a gonio masking file's page (G1, the furnace, G2 against Smith's forms).
+nlohmann::json masking_report_data(const std::string& path);
+
 // The whole page: `plotly_js` is the library's source, embedded as it is.
 std::string report_page(const nlohmann::json& data, const std::string& plotly_js);
 

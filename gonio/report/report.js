@@ -230,6 +230,35 @@ function drawNdf(c) {
   }, { displaylogo: false, responsive: true });
 }
 
+// The decomposition of simulated L1 - Model L1 (when the case has the chain's models).
+const CHAIN = ["l1", "smith_measured_ndf", "measured_g1", "measured"];
+function drawDecomposition(c) {
+  const a = c.albedos, has = a.l1_albedo && CHAIN.every((m) => a["model_" + m + "_albedo"]);
+  for (const id of ["decomposition-title", "decomposition-note", "decomposition"]) $(id).style.display = has ? "" : "none";
+  if (!has) return;
+  const val = (k) => alongTheta(c, a[k]), err = (k) => (a[k] ? alongTheta(c, a[k]) : c.theta_i.map(() => 0));
+  const sim = val("l1_albedo"), simErr = err("l1_albedo_stderr");
+  const steps = [["NDF fidelity", "l1", "smith_measured_ndf"], ["G1 depends on m", "smith_measured_ndf", "measured_g1"],
+                 ["masking–shadowing correlation", "measured_g1", "measured"]];
+  const traces = steps.map(([name, lo, hi]) => {
+    const a0 = val("model_" + lo + "_albedo"), a1 = val("model_" + hi + "_albedo");
+    const e0 = err("model_" + lo + "_albedo_stderr"), e1 = err("model_" + hi + "_albedo_stderr");
+    return { type: "bar", name, x: c.theta_i, y: a1.map((v, t) => v - a0[t]),
+             error_y: { type: "data", array: e1.map((v, t) => Math.hypot(v, e0[t])), visible: true } };
+  });
+  const meas = val("model_measured_albedo"), measErr = err("model_measured_albedo_stderr");
+  traces.push({ type: "bar", name: "left (simulated − measured)", x: c.theta_i, y: sim.map((v, t) => v - meas[t]),
+                error_y: { type: "data", array: simErr.map((v, t) => Math.hypot(v, measErr[t])), visible: true } });
+  const l1 = val("model_l1_albedo");
+  traces.push({ type: "scatter", mode: "markers", name: "simulated L1 − Model L1", x: c.theta_i,
+                y: sim.map((v, t) => v - l1[t]), marker: { symbol: "diamond", size: 10, color: "#000" },
+                error_y: { type: "data", array: simErr, visible: true } });
+  Plotly.react("decomposition", traces, {
+    barmode: "group", margin: { t: 20 }, xaxis: { title: "θi (°)" }, yaxis: { title: "albedo difference" },
+    legend: { orientation: "h" },
+  }, { displaylogo: false, responsive: true });
+}
+
 function draw() {
   const c = D.cases[state.c], sensor = D.sensors[c.sensor], m = maps(state.c);
   $("incidence").textContent = c.name + " at θi " + c.theta_i[state.t] + "°, φi " + c.phi_i[state.p] + "°";
@@ -239,24 +268,107 @@ function draw() {
   drawAlbedo(c);
   drawLedger(c);
   drawNdf(c);
+  drawDecomposition(c);
   document.body.dataset.drawn = c.name + "|" + state.t + "|" + state.p + "|" + state.ch;
 }
 
-summary();
-fillSelect($("case"), D.cases.map((c) => c.name), 0);
-$("case").addEventListener("change", (e) => { state.c = +e.target.value; caseChanged(); });
-$("theta").addEventListener("change", (e) => { state.t = +e.target.value; draw(); });
-$("phi").addEventListener("change", (e) => { state.p = +e.target.value; draw(); });
-$("channel").addEventListener("change", (e) => { state.ch = +e.target.value; draw(); });
-if (D.images.length) {
-  for (const im of D.images) {
-    const fig = document.createElement("figure");
-    fig.innerHTML = "<img alt=''><figcaption class='note'></figcaption>";
-    fig.querySelector("img").src = im.src;
-    fig.querySelector("figcaption").textContent = im.name;
-    $("images").appendChild(fig);
-  }
-} else {
-  $("images-section").style.display = "none";
+// ---- a gonio masking file ------------------------------------------------------------------
+const M = { c: 0, i: 0, p: 0 };
+function maskingCase() {
+  const c = D.cases[M.c];
+  const inc = [];
+  c.theta_i.forEach((t) => c.phi_i.forEach((p) => inc.push("θi " + t + "°, φi " + p + "°")));
+  M.i = Math.min(M.i, Math.max(0, inc.length - 1));
+  M.p = Math.min(M.p, c.phi_o.length - 1);
+  fillSelect($("m-incidence"), inc.length ? inc : ["(no incidence in the config)"], M.i);
+  fillSelect($("m-phi"), c.phi_o.map((p) => p + "°"), M.p);
+  drawMasking();
 }
-caseChanged();
+function drawMasking() {
+  const c = D.cases[M.c], v = c.values, np = c.phi_o.length, nt = c.theta_o.length;
+  $("m-ndf").textContent = c.ndf + " · " + c.surface;
+  const col = (arr) => c.theta_o.map((_, t) => arr[t * np + M.p]);
+  const cfg = { displaylogo: false, responsive: true };
+  Plotly.react("m-g1", [
+    { x: c.theta_o, y: col(v.g1_projected), name: "measured", mode: "markers",
+      error_y: { type: "data", array: col(v.g1_projected_stderr), visible: true } },
+    { x: c.theta_o, y: col(v.g1_smith_ndf), name: "Smith, analytic NDF", mode: "lines" },
+    { x: c.theta_o, y: col(v.g1_smith_surface), name: "Smith, D_s", mode: "lines", line: { dash: "dash" } },
+  ], { margin: { t: 30 }, title: { text: "G1(wo), projected-area average", font: { size: 13 } },
+       xaxis: { title: "θo (°)" }, yaxis: { title: "G1" }, legend: { orientation: "h" } }, cfg);
+  const cosv = c.theta_o.map((t) => Math.cos(t * Math.PI / 180));
+  Plotly.react("m-furnace", [
+    { x: c.theta_o, y: col(v.furnace).map((f, t) => f / cosv[t]), name: "furnace / cos θo", mode: "markers",
+      error_y: { type: "data", array: col(v.furnace_stderr).map((e, t) => e / cosv[t]), visible: true } },
+  ], { margin: { t: 30 }, title: { text: "weak white furnace: ∫G1⟨wo,m⟩D_s dm / cos θo (1 exactly)", font: { size: 13 } },
+       xaxis: { title: "θo (°)" }, yaxis: { title: "ratio" },
+       shapes: [{ type: "line", xref: "paper", x0: 0, x1: 1, y0: 1, y1: 1, line: { dash: "dot", color: "#888" } }] }, cfg);
+  const nh = c.height_lower_edge.length;
+  const heights = [];
+  for (let h = 0; h < nh; ++h)
+    heights.push({ x: c.theta_o, y: c.theta_o.map((_, t) => v.g1_height[(t * np + M.p) * nh + h]),
+                   name: "quantile " + (h + 1) + "/" + nh, mode: "lines+markers" });
+  Plotly.react("m-height", heights, { margin: { t: 30 }, title: { text: "G1(wo) by the point's height", font: { size: 13 } },
+       xaxis: { title: "θo (°)" }, yaxis: { title: "G1" }, legend: { orientation: "h" } }, cfg);
+  // G2 in the plane of incidence: dphi 0 (towards the light, plotted negative) and 180.
+  const n2t = c.g2_theta_o.length, n2p = c.g2_dphi.length, base = M.i * n2t * n2p;
+  const side = (dphi) => c.g2_dphi.indexOf(dphi);
+  const plane = (arr) => {
+    const xs = [], ys = [];
+    for (const [dp, sign] of [[0, -1], [180, 1]]) {
+      const p = side(dp);
+      if (p < 0) continue;
+      for (let t = 0; t < n2t; ++t) { xs.push(sign * c.g2_theta_o[t]); ys.push(arr[base + t * n2p + p]); }
+    }
+    const order = xs.map((_, k) => k).sort((a, b) => xs[a] - xs[b]);
+    return { x: order.map((k) => xs[k]), y: order.map((k) => ys[k]) };
+  };
+  const traces = [];
+  if (c.theta_i.length) {
+    const m = plane(v.g2), e = plane(v.g2_stderr);
+    traces.push({ ...m, name: "measured", mode: "markers", error_y: { type: "data", array: e.y, visible: true } });
+    for (const [k, name, dash] of [["g2_smith_uncorrelated_surface", "Smith uncorrelated (D_s)", "dot"],
+                                   ["g2_smith_height_correlated_surface", "Smith height-correlated (D_s)", "solid"],
+                                   ["g2_smith_height_direction_correlated_surface", "Smith height-direction (D_s)", "dash"],
+                                   ["g2_smith_height_correlated_ndf", "Smith height-correlated (analytic)", "dashdot"]])
+      traces.push({ ...plane(v[k]), name, mode: "lines", line: { dash } });
+  }
+  Plotly.react("m-g2", traces, { margin: { t: 30 }, title: { text: "G2(wi, wo) in the plane of incidence", font: { size: 13 } },
+       xaxis: { title: "θo (°), negative towards the light" }, yaxis: { title: "G2" }, legend: { orientation: "h" } }, cfg);
+  document.body.dataset.drawn = c.name + "|" + M.i + "|" + M.p;
+}
+function maskingPage() {
+  $("file").textContent = D.file;
+  $("provenance").textContent = Object.entries(D.attributes).map(([k, v]) => k + ": " + v).join(" · ");
+  document.querySelector(".result-only").style.display = "none";
+  $("masking").style.display = "";
+  fillSelect($("m-case"), D.cases.map((c) => c.name), 0);
+  $("m-case").addEventListener("change", (e) => { M.c = +e.target.value; maskingCase(); });
+  $("m-incidence").addEventListener("change", (e) => { M.i = +e.target.value; drawMasking(); });
+  $("m-phi").addEventListener("change", (e) => { M.p = +e.target.value; drawMasking(); });
+  maskingCase();
+}
+
+// ---- a result file ---------------------------------------------------------------------------
+function resultPage() {
+  summary();
+  fillSelect($("case"), D.cases.map((c) => c.name), 0);
+  $("case").addEventListener("change", (e) => { state.c = +e.target.value; caseChanged(); });
+  $("theta").addEventListener("change", (e) => { state.t = +e.target.value; draw(); });
+  $("phi").addEventListener("change", (e) => { state.p = +e.target.value; draw(); });
+  $("channel").addEventListener("change", (e) => { state.ch = +e.target.value; draw(); });
+  if (D.images.length) {
+    for (const im of D.images) {
+      const fig = document.createElement("figure");
+      fig.innerHTML = "<img alt=''><figcaption class='note'></figcaption>";
+      fig.querySelector("img").src = im.src;
+      fig.querySelector("figcaption").textContent = im.name;
+      $("images").appendChild(fig);
+    }
+  } else {
+    $("images-section").style.display = "none";
+  }
+  caseChanged();
+}
+
+if (D.kind === "masking") maskingPage(); else resultPage();
