@@ -1,7 +1,8 @@
 // The decomposition of simulated L1 against Model L1 (gonio masking's models): single scattering
 // written as F D_s(h) G(i, o, h) / (4 |i.n| |o.n|) with the surface's own facet NDF D_s and three
-// choices of G, each estimated over points drawn uniformly by area on the case's first surface (a
-// point's facet normal is distributed as D_s(m) dm). For a mirror facet the exit is o = reflect(i,
+// choices of G, each estimated over points drawn uniformly by area on the case's surfaces (a
+// point's facet normal is distributed as D_s(m) dm; an ensemble's points are spread over the
+// surfaces the incidence was traced on). For a mirror facet the exit is o = reflect(i,
 // m), and the energy into a cell is
 //   E_cell = (A_micro / A_macro) E_points[ chi(o in cell) <i, m>+ F(i.m) G ] / cos theta_i,
 // the h-integral of Model L1 [R19 Eq. 2] after the change of variables dw_o = 4 <i, h> dw_h. With
@@ -40,47 +41,116 @@ const Key kPoints = Key::integer("surface_points", {1024, 1e12},
 constexpr int kBatches = 16;
 constexpr int kPairingBins = 16384; // measured_g1: the bins a point's partner shares
 
-class SurfacePointModel final : public CellModel {
-  public:
-    SurfacePointModel(PointG g, const HeightField& surface, const TraceBackendKind& backend,
-                      FresnelTerm fresnel, MaskingForm masking, long long points)
-        : g_(g), surface_(surface), scene_(surface_, backend), fresnel_(std::move(fresnel)),
-          masking_(masking), points_(points),
-          facets_(facet_ndf_table(surface_, 90, 72), "the first surface", "height_map") {
-        // Triangles by area (both of a cell project to half a cell: area = that / m.z).
-        const int n = surface_.n;
-        cdf_.resize(size_t(2) * n * n);
+// One surface of the case: its triangles by area and its facet NDF (Lambda_s).
+struct PointSurface {
+    HeightField surface;
+    std::vector<double> cdf; // triangles by area (both of a cell project to half a cell)
+    double area_ratio = 0;   // A_micro / A_macro
+    TabulatedNdf facets;     // D_s as a table (1 degree by 5): its Lambda for smith_measured_ndf
+
+    explicit PointSurface(const HeightField& s)
+        : surface(s), facets(facet_ndf_table(s, 90, 72), "the surface", "height_map") {
+        const int n = s.n;
+        cdf.resize(size_t(2) * n * n);
         double total = 0;
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x)
                 for (int t = 0; t < 2; ++t) {
                     double p, q;
-                    surface_.triangle_slopes(x, y, t, p, q);
-                    total += std::sqrt(1.0 + p * p + q * q);
-                    cdf_[(size_t(y) * n + x) * 2 + t] = total;
+                    s.triangle_slopes(x, y, t, p, q);
+                    total += std::sqrt(1.0 + p * p + q * q); // area = projected area / m.z
+                    cdf[(size_t(y) * n + x) * 2 + t] = total;
                 }
-        area_ratio_ = total / (2.0 * n * n);
-        for (double& c : cdf_) c /= total;
+        area_ratio = total / (2.0 * n * n);
+        for (double& c : cdf) c /= total;
+    }
+
+    void draw(Rng& rng, Vec3& position, Vec3& normal) const {
+        const size_t k =
+            size_t(std::lower_bound(cdf.begin(), cdf.end(), rng.uniform()) - cdf.begin());
+        const size_t tri = std::min(k, cdf.size() - 1);
+        const int t = int(tri % 2), cell = int(tri / 2), x = cell % surface.n, y = cell / surface.n;
+        double u = rng.uniform(), v = rng.uniform();
+        if (u + v > 1) u = 1 - u, v = 1 - v; // uniform in the triangle (planar: on the facet)
+        // Triangle A: (x, y), (x+1, y), (x, y+1); B: (x+1, y+1), (x, y+1), (x+1, y).
+        const double gx = t == 0 ? x + u : x + 1 - u, gy = t == 0 ? y + v : y + 1 - v;
+        double p, q;
+        surface.triangle_slopes(x, y, t, p, q);
+        position = {gx * surface.spacing, gy * surface.spacing, surface.height_at_grid(gx, gy)};
+        normal = HeightField::normal_of_slopes(p, q);
+    }
+};
+
+// The next point in the same bin (cyclically; itself when alone in it).
+std::vector<long long> partners(const std::vector<Vec3>& normal, const BeckersSensor& bins) {
+    const size_t n = normal.size();
+    std::vector<int> bin(n);
+    for (size_t k = 0; k < n; ++k) bin[k] = bins.lookup(normal[k]);
+    std::vector<long long> order(n);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](long long a, long long b) { return bin[size_t(a)] < bin[size_t(b)]; });
+    std::vector<long long> partner(n);
+    size_t first = 0;
+    for (size_t k = 0; k < n; ++k) {
+        if (k > 0 && bin[size_t(order[k])] != bin[size_t(order[k - 1])]) first = k;
+        const bool last = k + 1 == n || bin[size_t(order[k + 1])] != bin[size_t(order[k])];
+        partner[size_t(order[k])] = last ? order[first] : order[k + 1];
+    }
+    return partner;
+}
+
+class SurfacePointModel final : public CellModel {
+  public:
+    SurfacePointModel(PointG g, const HeightField& first, const TraceBackendKind& backend,
+                      FresnelTerm fresnel, MaskingForm masking, long long points)
+        : g_(g), backend_(backend), fresnel_(std::move(fresnel)), masking_(masking),
+          points_(points) {
+        add_surface(first);
+    }
+
+    void add_surface(const HeightField& s) override {
+        surfaces_.push_back(std::make_unique<PointSurface>(s));
     }
 
     ModelIncidence evaluate(const Vec3& wi, const BeckersSensor& sensor, std::uint64_t seed,
                             std::uint64_t stream) const override {
+        return evaluate_on(wi, sensor, seed, stream, 1);
+    }
+
+    // One surface: 16 batches of its points. An ensemble: one batch per surface (its share of the
+    // points), as the simulation's ensembles batch by surface, so that the errors include the
+    // surfaces' spread.
+    ModelIncidence evaluate_on(const Vec3& wi, const BeckersSensor& sensor, std::uint64_t seed,
+                               std::uint64_t stream, int surfaces) const override {
         const auto start = std::chrono::steady_clock::now();
         const int nc = fresnel_.channels(), cells = sensor.cell_count();
-        const long long per_batch = (points_ + kBatches - 1) / kBatches;
-        std::vector<double> batches(size_t(kBatches) * cells * nc, 0.0);
-        const double lambda_i = facets_.lambda(wi);
+        const int B = surfaces > 1 ? surfaces : kBatches;
+        const long long per_batch = (points_ + B - 1) / B;
+        std::vector<double> batches(size_t(B) * cells * nc, 0.0);
         const BeckersSensor pairing(kPairingBins);
-        parallel_for<int>(0, kBatches, [&](int b) {
+        std::vector<std::unique_ptr<Scene>> scenes(static_cast<size_t>(surfaces));
+        for (int r = 0; r < surfaces; ++r)
+            scenes[size_t(r)] = std::make_unique<Scene>(surfaces_[size_t(r)]->surface, backend_);
+        parallel_for<int>(0, B, [&](int b) {
+            const int r = surfaces > 1 ? b : 0;
+            const PointSurface& ps = *surfaces_[size_t(r)];
+            const Scene& scene = *scenes[size_t(r)];
             Rng rng{seed, stream, 0x73706d6full /* "spmo" */, std::uint64_t(b)};
             std::vector<Vec3> pos(static_cast<size_t>(per_batch)), normal(pos.size());
-            for (long long k = 0; k < per_batch; ++k) draw(rng, pos[size_t(k)], normal[size_t(k)]);
+            for (size_t k = 0; k < pos.size(); ++k) ps.draw(rng, pos[k], normal[k]);
             // measured_g1: each point's partner is the next point of the batch in its fine bin.
             std::vector<long long> partner;
             if (g_ == PointG::measured_g1) partner = partners(normal, pairing);
-            const double eps = scene_.epsilon(), scale = area_ratio_ / (wi.z * double(per_batch));
+            const double lambda_i = ps.facets.lambda(wi);
+            const double eps = scene.epsilon(), scale = ps.area_ratio / (wi.z * double(per_batch));
             double* out = &batches[size_t(b) * cells * nc];
             double F[64];
+            auto sees = [&](long long at, const Vec3& w) {
+                if (dot(w, normal[size_t(at)]) <= 0) return false;
+                return scene.trace(pos[size_t(at)] + eps * normal[size_t(at)], w).kind ==
+                       SurfaceHit::escaped_up;
+            };
             for (long long k = 0; k < per_batch; ++k) {
                 const Vec3& m = normal[size_t(k)];
                 const double im = dot(wi, m);
@@ -88,14 +158,9 @@ class SurfacePointModel final : public CellModel {
                 const Vec3 o = 2.0 * im * m - wi; // mirror reflection about the facet
                 if (o.z <= 0) continue;           // into the surface: not single scattering
                 double g = 0;
-                auto sees = [&](long long at, const Vec3& w) {
-                    if (dot(w, normal[size_t(at)]) <= 0) return false;
-                    return scene_.trace(pos[size_t(at)] + eps * normal[size_t(at)], w).kind ==
-                           SurfaceHit::escaped_up;
-                };
                 switch (g_) {
-                case PointG::smith_measured_ndf:
-                    g = smith_g2(lambda_i, facets_.lambda(o), wi, o, masking_);
+                case PointG::smith_measured_ndf: // R19 Eq. 9 (or the case's form) with Lambda_s
+                    g = smith_g2(lambda_i, ps.facets.lambda(o), wi, o, masking_);
                     break;
                 case PointG::measured_g1:
                     g = sees(k, wi) && sees(partner[size_t(k)], o) ? 1.0 : 0.0;
@@ -111,20 +176,20 @@ class SurfacePointModel final : public CellModel {
             }
         });
         ModelIncidence r;
-        r.batches = kBatches;
+        r.batches = B;
         r.energy.assign(size_t(cells) * nc, 0.0);
-        for (int b = 0; b < kBatches; ++b)
+        for (int b = 0; b < B; ++b)
             for (size_t k = 0; k < r.energy.size(); ++k)
-                r.energy[k] += batches[size_t(b) * r.energy.size() + k] / kBatches;
+                r.energy[k] += batches[size_t(b) * r.energy.size() + k] / B;
         r.energy_batches = std::move(batches);
         // Albedo batches: each batch's cells summed.
-        std::vector<double> albedo_batches(size_t(kBatches) * nc, 0.0);
-        for (int b = 0; b < kBatches; ++b)
+        std::vector<double> albedo_batches(size_t(B) * nc, 0.0);
+        for (int b = 0; b < B; ++b)
             for (int c = 0; c < cells; ++c)
                 for (int k = 0; k < nc; ++k)
                     albedo_batches[size_t(b) * nc + k] +=
                         r.energy_batches[(size_t(b) * cells + c) * nc + k];
-        r.albedo_stderr = batch_stderr(albedo_batches, kBatches);
+        r.albedo_stderr = batch_stderr(albedo_batches, B);
         // Single scattering only: order 1 is everything.
         r.l1_energy = r.energy;
         r.l1_albedo.assign(size_t(nc), 0.0);
@@ -137,51 +202,12 @@ class SurfacePointModel final : public CellModel {
     }
 
   private:
-    void draw(Rng& rng, Vec3& position, Vec3& normal) const {
-        const size_t k =
-            size_t(std::lower_bound(cdf_.begin(), cdf_.end(), rng.uniform()) - cdf_.begin());
-        const size_t tri = std::min(k, cdf_.size() - 1);
-        const int t = int(tri % 2), cell = int(tri / 2), x = cell % surface_.n,
-                  y = cell / surface_.n;
-        double u = rng.uniform(), v = rng.uniform();
-        if (u + v > 1) u = 1 - u, v = 1 - v;
-        // Triangle A: (x, y), (x+1, y), (x, y+1); B: (x+1, y+1), (x, y+1), (x+1, y).
-        const double gx = t == 0 ? x + u : x + 1 - u, gy = t == 0 ? y + v : y + 1 - v;
-        double p, q;
-        surface_.triangle_slopes(x, y, t, p, q);
-        position = {gx * surface_.spacing, gy * surface_.spacing, surface_.height_at_grid(gx, gy)};
-        normal = HeightField::normal_of_slopes(p, q);
-    }
-
-    // The next point in the same bin (cyclically; itself when alone in it).
-    static std::vector<long long> partners(const std::vector<Vec3>& normal,
-                                           const BeckersSensor& bins) {
-        const size_t n = normal.size();
-        std::vector<int> bin(n);
-        for (size_t k = 0; k < n; ++k) bin[k] = bins.lookup(normal[k]);
-        std::vector<long long> order(n);
-        std::iota(order.begin(), order.end(), 0);
-        std::stable_sort(order.begin(), order.end(),
-                         [&](long long a, long long b) { return bin[size_t(a)] < bin[size_t(b)]; });
-        std::vector<long long> partner(n);
-        size_t first = 0;
-        for (size_t k = 0; k < n; ++k) {
-            if (k > 0 && bin[size_t(order[k])] != bin[size_t(order[k - 1])]) first = k;
-            const bool last = k + 1 == n || bin[size_t(order[k + 1])] != bin[size_t(order[k])];
-            partner[size_t(order[k])] = last ? order[first] : order[k + 1];
-        }
-        return partner;
-    }
-
     PointG g_;
-    HeightField surface_;
-    Scene scene_;
+    const TraceBackendKind& backend_;
     FresnelTerm fresnel_;
     MaskingForm masking_;
     long long points_;
-    TabulatedNdf facets_; // D_s as a table (1 degree by 5): its Lambda for smith_measured_ndf
-    std::vector<double> cdf_;
-    double area_ratio_ = 0;
+    std::vector<std::unique_ptr<PointSurface>> surfaces_;
 };
 
 ModelChoice point_model(PointG g, const char* name, const std::string& what, TableReader& r,
@@ -195,8 +221,8 @@ ModelChoice point_model(PointG g, const char* name, const std::string& what, Tab
     m.needs_surface = true;
     m.monte_carlo = true;
     const long long points = r.integer(kPoints.name, kPoints.range, c.trace_rays);
-    m.description = what + ", over " + std::to_string(points) +
-                    " points of the case's first surface per incidence";
+    m.description =
+        what + ", over " + std::to_string(points) + " points of the case's surfaces per incidence";
     m.build = [g, points, fresnel = c.facets.fresnel, masking = c.masking,
                backend = c.backend](const HeightField* surface) -> std::unique_ptr<CellModel> {
         return std::make_unique<SurfacePointModel>(g, *surface, *backend, fresnel, masking, points);

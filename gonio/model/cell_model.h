@@ -7,6 +7,7 @@
 #include "core/math.h"
 #include "gonio/model/brdf_model.h"
 #include "gonio/model/cell_integrator.h"
+#include "heightfield/heightfield.h"
 #include "sensor/beckers_sensor.h"
 
 #include <cstdint>
@@ -46,6 +47,17 @@ class CellModel {
     // draw from the random streams of (seed, stream), so the result is a function of them.
     virtual ModelIncidence evaluate(const Vec3& wi, const BeckersSensor& sensor, std::uint64_t seed,
                                     std::uint64_t stream) const = 0;
+    // Models of the surface itself (gonio/masking/surface_point_model.cpp) take every surface of
+    // an ensemble: surface r (r = 1, 2, ... in order; the first came with the model) ...
+    virtual void add_surface(const HeightField&) {}
+    // ... and evaluate an incidence on the first `surfaces` of them (the incidence's own, so that
+    // a unit's result does not depend on which units a process traced before it).
+    virtual ModelIncidence evaluate_on(const Vec3& wi, const BeckersSensor& sensor,
+                                       std::uint64_t seed, std::uint64_t stream,
+                                       int surfaces) const {
+        (void)surfaces;
+        return evaluate(wi, sensor, seed, stream);
+    }
 };
 
 // An analytic BRDF, its f cos(theta_o) integrated over each cell (cell_integrator.h).

@@ -13,11 +13,18 @@ CaseModels::CaseModels(const CaseConfig& c, const HeightField* surface) {
 }
 
 std::vector<ModelIncidence> CaseModels::evaluate(const Vec3& wi, const BeckersSensor& sensor,
-                                                 std::uint64_t seed, std::uint64_t stream) const {
+                                                 std::uint64_t seed, std::uint64_t stream,
+                                                 int surfaces) const {
+    GONIO_CHECK(surfaces >= 1 && surfaces <= surfaces_);
     std::vector<ModelIncidence> out;
     out.reserve(models_.size());
-    for (const auto& m : models_) out.push_back(m->evaluate(wi, sensor, seed, stream));
+    for (const auto& m : models_) out.push_back(m->evaluate_on(wi, sensor, seed, stream, surfaces));
     return out;
+}
+
+void CaseModels::add_surface(const HeightField& surface) {
+    for (const auto& m : models_) m->add_surface(surface);
+    ++surfaces_;
 }
 
 } // namespace gonio

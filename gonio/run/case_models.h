@@ -19,10 +19,15 @@ class CaseModels {
     // Every model of the case at incidence wi, in the case's order; Monte Carlo models draw
     // from (seed, stream), the incidence's streams.
     std::vector<ModelIncidence> evaluate(const Vec3& wi, const BeckersSensor& sensor,
-                                         std::uint64_t seed, std::uint64_t stream) const;
+                                         std::uint64_t seed, std::uint64_t stream,
+                                         int surfaces = 1) const;
+    // Surface r >= 1 of an ensemble, in order, for the models of the surface itself.
+    void add_surface(const HeightField& surface);
+    int surfaces() const { return surfaces_; }
 
   private:
     std::vector<std::unique_ptr<CellModel>> models_;
+    int surfaces_ = 1;
 };
 
 } // namespace gonio

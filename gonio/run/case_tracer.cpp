@@ -108,6 +108,9 @@ class CaseTracer {
         if (r == 0 && work_.models && !models_) { // a model fitted to a surface takes the first
             ScopedPhase t(phases_, Phase::models_setup);
             models_ = std::make_unique<CaseModels>(c_, &surface);
+        } else if (models_ && r == models_->surfaces()) { // models of the surface take them all
+            ScopedPhase t(phases_, Phase::models_setup);
+            models_->add_surface(surface);
         }
         for (Incidence* i : work) {
             context_.check_stop();
@@ -171,7 +174,7 @@ class CaseTracer {
         u.surface = surface_text_;
         if (models_)
             u.models = models_->evaluate(incidence_direction(c_, i.id), sensor_, work_.seed,
-                                         incidence_stream(i.id));
+                                         incidence_stream(i.id), int(u.members.size()));
         i.ensemble = IncidenceEnsemble{};
         if (context_.observer.unit_done) context_.observer.unit_done(i.id);
         sink_(i.id, std::move(u));
