@@ -3,6 +3,7 @@
 #include "core/check.h"
 #include "core/parallel.h"
 #include "core/random.h"
+#include "gonio/masking/facet_sampler.h"
 
 #include <algorithm>
 #include <atomic>
@@ -53,44 +54,10 @@ MaskingDirections masking_directions(const MaskingGrid& g) {
 
 namespace {
 
-// A point drawn uniformly by area on the facets, with its facet's normal and its height.
+// A point on the facets, with its facet's normal.
 struct FacetPoint {
     Vec3 position, normal;
 };
-
-// Triangles weighted by their area (both of a cell project to half a cell: area = that / m.z).
-std::vector<double> area_cdf(const HeightField& s, double& area_ratio) {
-    const int n = s.n;
-    std::vector<double> cdf(size_t(2) * n * n);
-    double total = 0;
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x)
-            for (int t = 0; t < 2; ++t) {
-                double p, q;
-                s.triangle_slopes(x, y, t, p, q);
-                total += std::sqrt(1.0 + p * p + q * q);
-                cdf[(size_t(y) * n + x) * 2 + t] = total;
-            }
-    area_ratio = total / (2.0 * n * n); // each triangle projects to half a cell
-    for (double& c : cdf) c /= total;
-    return cdf;
-}
-
-FacetPoint draw_point(const HeightField& s, const std::vector<double>& cdf, Rng& rng) {
-    const size_t k = size_t(std::lower_bound(cdf.begin(), cdf.end(), rng.uniform()) - cdf.begin());
-    const size_t tri = std::min(k, cdf.size() - 1);
-    const int t = int(tri % 2), cell = int(tri / 2), x = cell % s.n, y = cell / s.n;
-    double u = rng.uniform(), v = rng.uniform();
-    if (u + v > 1) u = 1 - u, v = 1 - v; // uniform in the triangle (planar: uniform on the facet)
-    // Triangle A: (x, y), (x+1, y), (x, y+1); B: (x+1, y+1), (x, y+1), (x+1, y) (heightfield.h).
-    const double gx = t == 0 ? x + u : x + 1 - u, gy = t == 0 ? y + v : y + 1 - v;
-    double p, q;
-    s.triangle_slopes(x, y, t, p, q);
-    FacetPoint f;
-    f.position = {gx * s.spacing, gy * s.spacing, s.height_at_grid(gx, gy)};
-    f.normal = HeightField::normal_of_slopes(p, q);
-    return f;
-}
 
 } // namespace
 
@@ -103,7 +70,8 @@ MaskingCounts measure_masking(const HeightField& s, const Scene& scene, const Ma
     const size_t ni = dirs.wi.size(), nwo = ni ? dirs.wo[0].size() : 0;
     MaskingCounts c;
     c.points = points;
-    const std::vector<double> cdf = area_cdf(s, c.area_ratio);
+    const FacetSampler sampler(s);
+    c.area_ratio = sampler.area_ratio();
 
     // The points, drawn in blocks with their own streams (the same points whatever the threads).
     constexpr long long kBlock = 4096;
@@ -112,7 +80,7 @@ MaskingCounts measure_masking(const HeightField& s, const Scene& scene, const Ma
     parallel_for<long long>(0, blocks, [&](long long b) {
         Rng rng{seed, 0x6d61736bull /* "mask" */, std::uint64_t(b)};
         for (long long k = b * kBlock; k < std::min(points, (b + 1) * kBlock); ++k)
-            pts[size_t(k)] = draw_point(s, cdf, rng);
+            sampler.draw(rng, pts[size_t(k)].position, pts[size_t(k)].normal);
     });
     // Height quantiles.
     {
@@ -156,7 +124,8 @@ MaskingCounts measure_masking(const HeightField& s, const Scene& scene, const Ma
                 block_projected2[size_t(b) * nw + w] += c.area_ratio * wm * c.area_ratio * wm;
                 if (v) {
                     ++v1[w * nb + bin], ++vh[w * nh + hq];
-                    const double x = c.area_ratio * wm; // Heitz 2014 Eq. 8: sum = cos theta_w
+                    const double x =
+                        c.area_ratio * wm; // Heitz 2014 section 3: the mean is cos theta_w
                     block_sum[size_t(b) * nw + w] += x;
                     block_sum2[size_t(b) * nw + w] += x * x;
                 }

@@ -17,6 +17,7 @@
 #include "core/batch_means.h"
 #include "core/parallel.h"
 #include "core/random.h"
+#include "gonio/masking/facet_sampler.h"
 #include "gonio/model/model_kind.h"
 #include "gonio/trace/scene.h"
 #include "heightfield/ndf/ndf_table.h"
@@ -41,44 +42,15 @@ const Key kPoints = Key::integer("surface_points", {1024, 1e12},
 constexpr int kBatches = 16;
 constexpr int kPairingBins = 16384; // measured_g1: the bins a point's partner shares
 
-// One surface of the case: its triangles by area and its facet NDF (Lambda_s).
+// One surface of the case: its facet sampler and its facet NDF (Lambda_s).
 struct PointSurface {
     HeightField surface;
-    std::vector<double> cdf; // triangles by area (both of a cell project to half a cell)
-    double area_ratio = 0;   // A_micro / A_macro
-    TabulatedNdf facets;     // D_s as a table (1 degree by 5): its Lambda for smith_measured_ndf
+    FacetSampler sampler;
+    TabulatedNdf facets; // D_s as a table (1 degree by 5): its Lambda for smith_measured_ndf
 
     explicit PointSurface(const HeightField& s)
-        : surface(s), facets(facet_ndf_table(s, 90, 72), "the surface", "height_map") {
-        const int n = s.n;
-        cdf.resize(size_t(2) * n * n);
-        double total = 0;
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x)
-                for (int t = 0; t < 2; ++t) {
-                    double p, q;
-                    s.triangle_slopes(x, y, t, p, q);
-                    total += std::sqrt(1.0 + p * p + q * q); // area = projected area / m.z
-                    cdf[(size_t(y) * n + x) * 2 + t] = total;
-                }
-        area_ratio = total / (2.0 * n * n);
-        for (double& c : cdf) c /= total;
-    }
-
-    void draw(Rng& rng, Vec3& position, Vec3& normal) const {
-        const size_t k =
-            size_t(std::lower_bound(cdf.begin(), cdf.end(), rng.uniform()) - cdf.begin());
-        const size_t tri = std::min(k, cdf.size() - 1);
-        const int t = int(tri % 2), cell = int(tri / 2), x = cell % surface.n, y = cell / surface.n;
-        double u = rng.uniform(), v = rng.uniform();
-        if (u + v > 1) u = 1 - u, v = 1 - v; // uniform in the triangle (planar: on the facet)
-        // Triangle A: (x, y), (x+1, y), (x, y+1); B: (x+1, y+1), (x, y+1), (x+1, y).
-        const double gx = t == 0 ? x + u : x + 1 - u, gy = t == 0 ? y + v : y + 1 - v;
-        double p, q;
-        surface.triangle_slopes(x, y, t, p, q);
-        position = {gx * surface.spacing, gy * surface.spacing, surface.height_at_grid(gx, gy)};
-        normal = HeightField::normal_of_slopes(p, q);
-    }
+        : surface(s), sampler(surface),
+          facets(facet_ndf_table(s, 90, 72), "the surface", "height_map") {}
 };
 
 // The next point in the same bin (cyclically; itself when alone in it).
@@ -138,12 +110,13 @@ class SurfacePointModel final : public CellModel {
             const Scene& scene = *scenes[size_t(r)];
             Rng rng{seed, stream, 0x73706d6full /* "spmo" */, std::uint64_t(b)};
             std::vector<Vec3> pos(static_cast<size_t>(per_batch)), normal(pos.size());
-            for (size_t k = 0; k < pos.size(); ++k) ps.draw(rng, pos[k], normal[k]);
+            for (size_t k = 0; k < pos.size(); ++k) ps.sampler.draw(rng, pos[k], normal[k]);
             // measured_g1: each point's partner is the next point of the batch in its fine bin.
             std::vector<long long> partner;
             if (g_ == PointG::measured_g1) partner = partners(normal, pairing);
             const double lambda_i = ps.facets.lambda(wi);
-            const double eps = scene.epsilon(), scale = ps.area_ratio / (wi.z * double(per_batch));
+            const double eps = scene.epsilon(),
+                         scale = ps.sampler.area_ratio() / (wi.z * double(per_batch));
             double* out = &batches[size_t(b) * cells * nc];
             double F[64];
             auto sees = [&](long long at, const Vec3& w) {
