@@ -147,8 +147,10 @@ def main():
                 not any(m.startswith("map-sigma_") for m in maps):
             fail("the maps drawn are " + str(maps))
         views = ["plane", "albedo", "ledger", "ndf"] + maps
-        if not a.result:
-            views.append("decomposition")  # the first case has the decomposition's models
+        if not a.result:  # the first case has the decomposition's models: its chart and step maps
+            views.append("decomposition")
+            if "map-step_1" not in maps:
+                fail("no per-cell maps of the decomposition's steps: " + str(maps))
         for view in views:
             fp = driver.execute_script(FINGERPRINT, view)
             if not fp or fp[1] == 0:

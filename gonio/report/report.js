@@ -21,6 +21,8 @@ function maps(ci) {
 }
 const fmt = (v, d = 4) => (v === undefined || v === null || !isFinite(v) ? "–" : Number(v).toPrecision(d));
 const state = { c: 0, t: 0, p: 0, ch: 0 };
+// The decomposition's models, in order (gonio/masking/surface_point_model.cpp).
+const CHAIN = ["l1", "smith_measured_ndf", "measured_g1", "measured"];
 
 function fillSelect(el, labels, value) {
   el.innerHTML = "";
@@ -97,6 +99,14 @@ function mapSet(c, m, n) {
     });
     list.push({ key: "sigma_" + name, title: (every ? "L∞" : "L1") + " − " + name + " (σ)", v: s, brdf: false });
   }
+  // The decomposition's steps per cell (when the case has the chain's models), in 1/sr.
+  const chain = CHAIN.map((n) => get("model_" + n));
+  if (chain.every((v) => v)) {
+    const names = ["NDF fidelity", "G1 depends on m", "masking–shadowing correlation"];
+    for (let k = 1; k < chain.length; ++k)
+      list.push({ key: "step_" + k, title: "step: " + names[k - 1], v: chain[k].map((x, c) => x - chain[k - 1][c]),
+                  brdf: false, diff: true });
+  }
   return { list, l1, linf };
 }
 
@@ -122,16 +132,19 @@ function drawMaps(c, set, sensor) {
         if (k < 0) { zr[q] = null; rr[q] = null; continue; }
         const v = e.v[k];
         rr[q] = v;
-        zr[q] = e.brdf ? (v > 0 ? Math.log10(Math.max(v, lo)) : null) : (isFinite(v) ? Math.max(-5, Math.min(5, v)) : null);
+        zr[q] = e.brdf ? (v > 0 ? Math.log10(Math.max(v, lo)) : null) : e.diff ? v : (isFinite(v) ? Math.max(-5, Math.min(5, v)) : null);
       }
       z.push(zr); raw.push(rr);
     }
+    let span = 5;
+    if (e.diff) { span = 0; for (const v of e.v) if (isFinite(v)) span = Math.max(span, Math.abs(v)); span = span || 1; }
     const trace = {
       type: "heatmap", z, customdata: raw, hoverongaps: false,
-      hovertemplate: e.brdf ? "f = %{customdata:.4g} 1/sr<extra></extra>" : "%{customdata:.2f} σ<extra></extra>",
+      hovertemplate: e.brdf ? "f = %{customdata:.4g} 1/sr<extra></extra>"
+                            : e.diff ? "Δf = %{customdata:.3g} 1/sr<extra></extra>" : "%{customdata:.2f} σ<extra></extra>",
       colorscale: e.brdf ? "Viridis" : "RdBu", reversescale: !e.brdf,
-      zmin: e.brdf ? Math.log10(lo) : -5, zmax: e.brdf ? Math.log10(hi) : 5,
-      colorbar: { thickness: 10, title: { text: e.brdf ? "log₁₀ f" : "σ", side: "right" } },
+      zmin: e.brdf ? Math.log10(lo) : -span, zmax: e.brdf ? Math.log10(hi) : span,
+      colorbar: { thickness: 10, title: { text: e.brdf ? "log₁₀ f" : e.diff ? "Δf" : "σ", side: "right" } },
     };
     const layout = {
       title: { text: e.title, font: { size: 13 } }, margin: { l: 10, r: 10, t: 30, b: 10 }, height: 330,
@@ -231,7 +244,6 @@ function drawNdf(c) {
 }
 
 // The decomposition of simulated L1 - Model L1 (when the case has the chain's models).
-const CHAIN = ["l1", "smith_measured_ndf", "measured_g1", "measured"];
 function drawDecomposition(c) {
   const a = c.albedos, has = a.l1_albedo && CHAIN.every((m) => a["model_" + m + "_albedo"]);
   for (const id of ["decomposition-title", "decomposition-note", "decomposition"]) $(id).style.display = has ? "" : "none";
