@@ -1,6 +1,7 @@
 // gonio masking: the weak white furnace on generated surfaces, the projected-area G1 against
 // Smith's from the surface's own facet NDF (the same quantity, Heitz 2014), the measurement's
 // independence from the threads, and the height-direction-correlated Smith form.
+#include "gonio/masking/facet_sampler.h"
 #include "gonio/masking/masking_estimates.h"
 #include "gonio/trace/scene.h"
 #include "heightfield/ndf/beckmann.h"
@@ -55,7 +56,9 @@ TEST_CASE("weak white furnace: integral of G1 <w, m>+ D_s = cos theta at every w
             const HeightField s = surface_of(*ndf, 128, 7);
             const Scene scene(s);
             const MaskingCounts c = measure_masking(s, scene, grid, 1 << 15, 0, 11);
-            const TabulatedNdf facets(facet_ndf_table(s, 45, 36), "surface", "height_map");
+            const TabulatedNdf facets(
+                facet_ndf_table(s, kFacetTable.theta_intervals, kFacetTable.phi_count), "surface",
+                "height_map");
             const MaskingEstimates e = estimate_masking({c}, grid, *ndf, facets);
             const Array &z = e["furnace_z"], &gp = e["g1_projected"],
                         &gpe = e["g1_projected_stderr"], &smith = e["g1_smith_surface"];
@@ -64,7 +67,7 @@ TEST_CASE("weak white furnace: integral of G1 <w, m>+ D_s = cos theta at every w
                 CHECK(std::abs(z.data[k]) <= 3.0);
                 worst = std::max(worst, std::abs(z.data[k]));
                 // The projected-area G1 is Smith's 1 / (1 + Lambda) of D_s: the same quantity, up
-                // to the facet table's binning of D_s (2 degrees by 10) and the points' noise.
+                // to the facet table's binning of D_s (kFacetTable) and the points' noise.
                 if (gpe.data[k] > 0)
                     CHECK(std::abs(gp.data[k] - smith.data[k]) <=
                           4 * gpe.data[k] + 0.01 * (1 - smith.data[k]) + 1e-4);

@@ -51,7 +51,7 @@ void print_case(const CaseMasking& c) {
                     e.g2_theta_o[t] == e.theta_i[i / e.phi_i.size()] && e.g2_dphi[p] == 0;
                 const bool specular =
                     e.g2_theta_o[t] == e.theta_i[i / e.phi_i.size()] && e.g2_dphi[p] == 180;
-                if (!retro && !specular) continue;
+                if ((!retro && !specular) || (specular && e.g2_theta_o[t] == 0)) continue;
                 const size_t k = (i * n2t + t) * n2p + p;
                 std::printf("  %7g %7g %9g %7g %10.6f±%.1e %10.6f %10.6f %10.6f\n",
                             e.theta_i[i / e.phi_i.size()], e.phi_i[i % e.phi_i.size()],
@@ -97,7 +97,7 @@ std::function<int()> setup(CLI::App& app, const CliContext& context) {
         ->check(CLI::Range(1LL << 6, 1LL << 30));
     app.add_option("--normal-bins", a->options.normal_bins,
                    "Equal-area bins of the facet normal (default 145)")
-        ->check(CLI::Range(1, 100000));
+        ->check(CLI::Range(1, 10000));
     app.add_option("--height-bins", a->options.height_bins,
                    "Quantiles of the points' heights (default 8)")
         ->check(CLI::Range(1, 1000));

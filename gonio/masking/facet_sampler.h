@@ -9,9 +9,18 @@
 
 namespace gonio {
 
+// The table of the surface's facet NDF D_s that gonio masking and the decomposition models take
+// Smith's Lambda_s from: 1 degree by 5 (the height_map family's default is 2 by 10).
+struct FacetTable {
+    int theta_intervals = 90, phi_count = 72;
+};
+inline constexpr FacetTable kFacetTable{};
+
 class FacetSampler {
   public:
-    explicit FacetSampler(const HeightField& surface);
+    explicit FacetSampler(const HeightField& surface); // keeps a reference to it
+    FacetSampler(const FacetSampler&) = delete;
+    FacetSampler& operator=(const FacetSampler&) = delete;
     // A_micro / A_macro: the facets' area over the patch's.
     double area_ratio() const { return area_ratio_; }
     void draw(Rng& rng, Vec3& position, Vec3& normal) const;

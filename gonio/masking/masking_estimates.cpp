@@ -114,6 +114,17 @@ MaskingEstimates estimate_masking(const std::vector<MaskingCounts>& per_surface,
         gpe.data[w] =
             sx > 0 ? std::sqrt(all.furnace_sum2[w] * (1 - r) * (1 - r) + hidden2 * r * r) / sx
                    : kNaN;
+        if (per_surface.size() >= 2) { // an ensemble: the spread of its surfaces' ratios
+            double s = 0, s2 = 0;
+            int m = 0;
+            for (const MaskingCounts& c : per_surface) {
+                if (!(c.projected_sum[w] > 0)) continue;
+                const double q = c.furnace_sum[w] / c.projected_sum[w];
+                s += q, s2 += q * q, ++m;
+            }
+            if (m >= 2)
+                gpe.data[w] = std::sqrt(std::max(0.0, (s2 - m * (s / m) * (s / m)) / (m - 1)) / m);
+        }
         sn.data[w] = target.G1(dirs.w[w]);
         ss.data[w] = facet_ndf.G1(dirs.w[w]);
     }

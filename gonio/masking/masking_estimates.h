@@ -4,7 +4,9 @@
 // the analytic NDF and from the surface's own facet NDF D_s (its Lambda from the back-facing
 // projected area of D_s). Standard errors are binomial for one surface; for an ensemble they are
 // the spread of the surfaces' own estimates (batch means over surfaces), so that they include the
-// surface's spread.
+// surface's spread — but for the weak furnace, exact on every surface, whose error is its points'.
+// An ensemble's Smith (D_s) forms use the first surface's D_s; its height quantiles are each
+// surface's own, and the edges written are the first surface's.
 #include "core/named_array.h"
 #include "gonio/masking/masking_measurement.h"
 #include "heightfield/ndf/ndf.h"

@@ -106,8 +106,9 @@ MaskingCounts measure_masking(const HeightField& s, const Scene& scene, const Ma
         return h.kind == SurfaceHit::escaped_up;
     };
     parallel_for<long long>(0, blocks, [&](long long b) {
+        const bool g2 = b * kBlock < g2_points; // G2's counters only where it is measured
         std::vector<long long> f1(nw * nb, 0), v1(nw * nb, 0), fh(nw * nh, 0), vh(nw * nh, 0),
-            f2(ni * nwo * nb, 0), v2(ni * nwo * nb, 0);
+            f2(g2 ? ni * nwo * nb : 0, 0), v2(f2.size(), 0);
         std::vector<char> seen_i(ni);
         for (long long k = b * kBlock; k < std::min(points, (b + 1) * kBlock); ++k) {
             const FacetPoint& f = pts[size_t(k)];

@@ -3,6 +3,7 @@
 #include "core/float_mode.h"
 #include "core/threads.h"
 #include "gonio/io/sealed_file.h"
+#include "gonio/masking/facet_sampler.h"
 #include "gonio/table/result_case.h"
 #include "gonio/trace/scene.h"
 #include "gonio_version.h"
@@ -54,8 +55,9 @@ std::vector<CaseMasking> run_masking(const Config& cfg, const MaskingOptions& o)
                     m.surface = "an ensemble of " + std::to_string(surfaces) +
                                 " surfaces, the first " + m.surface;
                 // D_s of the first surface: the default table of the height_map family.
-                facet_ndf = std::make_unique<TabulatedNdf>(facet_ndf_table(s, 45, 36),
-                                                           c.name + " surface", "height_map");
+                facet_ndf = std::make_unique<TabulatedNdf>(
+                    facet_ndf_table(s, kFacetTable.theta_intervals, kFacetTable.phi_count),
+                    c.name + " surface", "height_map");
             }
             const Scene scene(s, *c.trace.backend);
             counts.push_back(

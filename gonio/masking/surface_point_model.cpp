@@ -40,17 +40,25 @@ const Key kPoints = Key::integer("surface_points", {1024, 1e12},
                         .note_default("`trace.rays`");
 
 constexpr int kBatches = 16;
-constexpr int kPairingBins = 16384; // measured_g1: the bins a point's partner shares
+// measured_g1: a point's partner shares its normal's bin; bins hold 4 points on average, at most
+// 16 384 bins. Points are drawn and paired in chunks of at most 2^20 (memory: O(chunk)).
+constexpr long long kChunk = 1 << 20;
+int pairing_bins(long long points) {
+    return int(std::clamp(points / 4, 64LL, 16384LL));
+}
 
 // One surface of the case: its facet sampler and its facet NDF (Lambda_s).
 struct PointSurface {
     HeightField surface;
-    FacetSampler sampler;
-    TabulatedNdf facets; // D_s as a table (1 degree by 5): its Lambda for smith_measured_ndf
+    FacetSampler sampler; // holds a reference to `surface`: not copied, not moved
+    TabulatedNdf facets;  // D_s as a table (kFacetTable): its Lambda for smith_measured_ndf
 
     explicit PointSurface(const HeightField& s)
         : surface(s), sampler(surface),
-          facets(facet_ndf_table(s, 90, 72), "the surface", "height_map") {}
+          facets(facet_ndf_table(s, kFacetTable.theta_intervals, kFacetTable.phi_count),
+                 "the surface", "height_map") {}
+    PointSurface(const PointSurface&) = delete;
+    PointSurface& operator=(const PointSurface&) = delete;
 };
 
 // The next point in the same bin (cyclically; itself when alone in it).
@@ -100,52 +108,59 @@ class SurfacePointModel final : public CellModel {
         const int B = surfaces > 1 ? surfaces : kBatches;
         const long long per_batch = (points_ + B - 1) / B;
         std::vector<double> batches(size_t(B) * cells * nc, 0.0);
-        const BeckersSensor pairing(kPairingBins);
-        std::vector<std::unique_ptr<Scene>> scenes(static_cast<size_t>(surfaces));
-        for (int r = 0; r < surfaces; ++r)
-            scenes[size_t(r)] = std::make_unique<Scene>(surfaces_[size_t(r)]->surface, backend_);
+        // One surface: its scene shared by the batches; an ensemble: each batch builds its own
+        // surface's scene (at most one per thread alive).
+        std::unique_ptr<Scene> shared;
+        if (surfaces == 1) shared = std::make_unique<Scene>(surfaces_[0]->surface, backend_);
         parallel_for<int>(0, B, [&](int b) {
             const int r = surfaces > 1 ? b : 0;
             const PointSurface& ps = *surfaces_[size_t(r)];
-            const Scene& scene = *scenes[size_t(r)];
+            std::unique_ptr<Scene> own;
+            if (!shared) own = std::make_unique<Scene>(ps.surface, backend_);
+            const Scene& scene = shared ? *shared : *own;
             Rng rng{seed, stream, 0x73706d6full /* "spmo" */, std::uint64_t(b)};
-            std::vector<Vec3> pos(static_cast<size_t>(per_batch)), normal(pos.size());
-            for (size_t k = 0; k < pos.size(); ++k) ps.sampler.draw(rng, pos[k], normal[k]);
-            // measured_g1: each point's partner is the next point of the batch in its fine bin.
-            std::vector<long long> partner;
-            if (g_ == PointG::measured_g1) partner = partners(normal, pairing);
             const double lambda_i = ps.facets.lambda(wi);
-            const double eps = scene.epsilon(),
-                         scale = ps.sampler.area_ratio() / (wi.z * double(per_batch));
+            const double eps = scene.epsilon();
+            const double scale = ps.sampler.area_ratio() / (wi.z * double(per_batch));
             double* out = &batches[size_t(b) * cells * nc];
-            double F[64];
-            auto sees = [&](long long at, const Vec3& w) {
-                if (dot(w, normal[size_t(at)]) <= 0) return false;
-                return scene.trace(pos[size_t(at)] + eps * normal[size_t(at)], w).kind ==
-                       SurfaceHit::escaped_up;
-            };
-            for (long long k = 0; k < per_batch; ++k) {
-                const Vec3& m = normal[size_t(k)];
-                const double im = dot(wi, m);
-                if (im <= 0) continue;
-                const Vec3 o = 2.0 * im * m - wi; // mirror reflection about the facet
-                if (o.z <= 0) continue;           // into the surface: not single scattering
-                double g = 0;
-                switch (g_) {
-                case PointG::smith_measured_ndf: // R19 Eq. 9 (or the case's form) with Lambda_s
-                    g = smith_g2(lambda_i, ps.facets.lambda(o), wi, o, masking_);
-                    break;
-                case PointG::measured_g1:
-                    g = sees(k, wi) && sees(partner[size_t(k)], o) ? 1.0 : 0.0;
-                    break;
-                case PointG::measured:
-                    g = sees(k, wi) && sees(k, o) ? 1.0 : 0.0;
-                    break;
+            double F[kMaxChannels];
+            std::vector<Vec3> pos, normal;
+            std::vector<long long> partner;
+            for (long long from = 0; from < per_batch; from += kChunk) {
+                const long long n = std::min(kChunk, per_batch - from);
+                pos.resize(size_t(n)), normal.resize(size_t(n));
+                for (size_t k = 0; k < pos.size(); ++k) ps.sampler.draw(rng, pos[k], normal[k]);
+                // measured_g1: each point's partner is the next point of the chunk in its bin.
+                if (g_ == PointG::measured_g1)
+                    partner = partners(normal, BeckersSensor(pairing_bins(n)));
+                auto sees = [&](long long at, const Vec3& w) {
+                    if (dot(w, normal[size_t(at)]) <= 0) return false;
+                    return scene.trace(pos[size_t(at)] + eps * normal[size_t(at)], w).kind ==
+                           SurfaceHit::escaped_up;
+                };
+                for (long long k = 0; k < n; ++k) {
+                    const Vec3& m = normal[size_t(k)];
+                    const double im = dot(wi, m);
+                    if (im <= 0) continue;
+                    const Vec3 o = 2.0 * im * m - wi; // mirror reflection about the facet
+                    if (o.z <= 0) continue;           // into the surface: not single scattering
+                    double g = 0;
+                    switch (g_) {
+                    case PointG::smith_measured_ndf: // R19 Eq. 9 (or the case's form), Lambda_s
+                        g = smith_g2(lambda_i, ps.facets.lambda(o), wi, o, masking_);
+                        break;
+                    case PointG::measured_g1:
+                        g = sees(k, wi) && sees(partner[size_t(k)], o) ? 1.0 : 0.0;
+                        break;
+                    case PointG::measured:
+                        g = sees(k, wi) && sees(k, o) ? 1.0 : 0.0;
+                        break;
+                    }
+                    if (g == 0) continue;
+                    fresnel_.eval(im, F);
+                    double* cell = out + size_t(sensor.lookup(o)) * nc;
+                    for (int c = 0; c < nc; ++c) cell[c] += scale * im * F[c] * g;
                 }
-                if (g == 0) continue;
-                fresnel_.eval(im, F);
-                double* cell = out + size_t(sensor.lookup(o)) * nc;
-                for (int c = 0; c < nc; ++c) cell[c] += scale * im * F[c] * g;
             }
         });
         ModelIncidence r;
@@ -193,7 +208,12 @@ ModelChoice point_model(PointG g, const char* name, const std::string& what, Tab
     m.compared_with = ModelTarget::l1;
     m.needs_surface = true;
     m.monte_carlo = true;
-    const long long points = r.integer(kPoints.name, kPoints.range, c.trace_rays);
+    const long long points =
+        r.integer(kPoints.name, kPoints.range, std::max<long long>(c.trace_rays, kPoints.range.lo));
+    if (g == PointG::smith_measured_ndf && c.masking == MaskingForm::v_cavity)
+        r.fail("masking",
+               "smith_measured_ndf uses a Smith form of G2; \"v-cavity\" is not one "
+               "(choose height-correlated, uncorrelated or height-direction-correlated)");
     m.description =
         what + ", over " + std::to_string(points) + " points of the case's surfaces per incidence";
     m.build = [g, points, fresnel = c.facets.fresnel, masking = c.masking,

@@ -310,8 +310,8 @@ function drawMasking() {
        xaxis: { title: "θo (°)" }, yaxis: { title: "G1" }, legend: { orientation: "h" } }, cfg);
   const cosv = c.theta_o.map((t) => Math.cos(t * Math.PI / 180));
   Plotly.react("m-furnace", [
-    { x: c.theta_o, y: col(v.furnace).map((f, t) => f / cosv[t]), name: "furnace / cos θo", mode: "markers",
-      error_y: { type: "data", array: col(v.furnace_stderr).map((e, t) => e / cosv[t]), visible: true } },
+    { x: c.theta_o, y: col(v.furnace).map((f, t) => (f == null ? null : f / cosv[t])), name: "furnace / cos θo", mode: "markers",
+      error_y: { type: "data", array: col(v.furnace_stderr).map((e, t) => (e == null ? null : e / cosv[t])), visible: true } },
   ], { margin: { t: 30 }, title: { text: "weak white furnace: ∫G1⟨wo,m⟩D_s dm / cos θo (1 exactly)", font: { size: 13 } },
        xaxis: { title: "θo (°)" }, yaxis: { title: "ratio" },
        shapes: [{ type: "line", xref: "paper", x0: 0, x1: 1, y0: 1, y1: 1, line: { dash: "dot", color: "#888" } }] }, cfg);
