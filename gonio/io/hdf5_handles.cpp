@@ -320,17 +320,24 @@ void check_file_checksum(const std::string& path) {
                                  "not match its bytes)");
 }
 
+std::string link_name(hid_t group, H5_index_t order, hsize_t k) {
+    const ssize_t len =
+        H5Lget_name_by_idx(group, ".", order, H5_ITER_INC, k, nullptr, 0, H5P_DEFAULT);
+    if (len < 0) throw std::runtime_error("a damaged list of links");
+    std::string name(size_t(len), '\0');
+    if (H5Lget_name_by_idx(group, ".", order, H5_ITER_INC, k, name.data(), size_t(len) + 1,
+                           H5P_DEFAULT) < 0)
+        throw std::runtime_error("a damaged list of links");
+    return name;
+}
+
 void seal(hid_t object, bool group) {
     if (group) {
         std::vector<std::string> datasets;
         H5G_info_t info;
         check(H5Gget_info(object, &info), "H5Gget_info");
         for (hsize_t k = 0; k < info.nlinks; ++k) {
-            const ssize_t len = H5Lget_name_by_idx(object, ".", H5_INDEX_NAME, H5_ITER_INC, k,
-                                                   nullptr, 0, H5P_DEFAULT);
-            std::string name(size_t(std::max<ssize_t>(len, 0)), '\0');
-            H5Lget_name_by_idx(object, ".", H5_INDEX_NAME, H5_ITER_INC, k, name.data(),
-                               size_t(len) + 1, H5P_DEFAULT);
+            const std::string name = link_name(object, H5_INDEX_NAME, k);
             H5O_info_t o;
             if (H5Oget_info_by_name2(object, name.c_str(), &o, H5O_INFO_BASIC, H5P_DEFAULT) >= 0 &&
                 o.type == H5O_TYPE_DATASET)

@@ -40,6 +40,10 @@ void discard_file(hid_t file);
 // left on device"), else HDF5's innermost description; "" when unknown.
 std::string reason();
 
+// The name of link k of `group` in `order` (H5_INDEX_NAME or H5_INDEX_CRT_ORDER); throws
+// std::runtime_error when the group's list of links is damaged.
+std::string link_name(hid_t group, H5_index_t order, hsize_t k);
+
 // Attributes (replaced if they exist). Strings are variable-length UTF-8; a list of strings is
 // a 1-D array of them.
 void write_string_attribute(hid_t object, const std::string& name, const std::string& value);

@@ -41,18 +41,23 @@ std::string ResultWriter::conventions() {
 ResultWriter::ResultWriter(std::string path, bool overwrite)
     : file_(std::move(path), overwrite, "a result file") {}
 
+void write_provenance(hid_t file, const std::string& format, const Config& cfg,
+                      const std::string& command_line) {
+    h5::write_string_attribute(file, "file_format", format);
+    h5::write_string_attribute(file, "gonio_version", kVersion);
+    h5::write_string_attribute(file, "git_hash", kGitHash);
+    h5::write_string_attribute(file, "command_line", command_line);
+    h5::write_int_attribute(file, "seed", static_cast<long long>(cfg.seed));
+    h5::write_string_attribute(file, "config_path", cfg.path);
+    h5::write_string_attribute(file, "config_effective_toml", cfg.effective_toml);
+}
+
 void ResultWriter::write_run(const Config& cfg, const std::string& command_line) {
-    h5::write_string_attribute(file_, "file_format", "gonio-result 2");
-    h5::write_string_attribute(file_, "gonio_version", kVersion);
-    h5::write_string_attribute(file_, "git_hash", kGitHash);
-    h5::write_string_attribute(file_, "command_line", command_line);
-    h5::write_int_attribute(file_, "seed", static_cast<long long>(cfg.seed));
-    h5::write_string_attribute(file_, "config_path", cfg.path);
+    write_provenance(file_, "gonio-result 2", cfg, command_line);
     h5::write_string_attribute(file_, "config_toml", cfg.text);
     std::string overrides;
     for (const auto& o : cfg.overrides) overrides += o + "\n";
     h5::write_string_attribute(file_, "config_overrides", overrides);
-    h5::write_string_attribute(file_, "config_effective_toml", cfg.effective_toml);
     h5::write_string_attribute(file_, "conventions", conventions());
     h5::write_string_attribute(file_, "created_utc", utc_now());
     std::vector<std::string> names;

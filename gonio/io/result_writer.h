@@ -9,8 +9,8 @@
 // Its methods' errors do not name the file: the caller does (write_result).
 #include "gonio/config/config.h"
 #include "gonio/io/hdf5_handles.h"
-#include "gonio/io/sealed_file.h"
 #include "gonio/io/model_result.h"
+#include "gonio/io/sealed_file.h"
 #include "gonio/io/simulation_result.h"
 #include "sensor/beckers_sensor.h"
 
@@ -19,6 +19,11 @@
 #include <vector>
 
 namespace gonio {
+
+// The run's provenance, the root attributes every file gonio writes from a config carries:
+// file_format, gonio_version, git_hash, command_line, seed, config_path, config_effective_toml.
+void write_provenance(hid_t file, const std::string& format, const Config& cfg,
+                      const std::string& command_line);
 
 class ResultWriter {
   public:

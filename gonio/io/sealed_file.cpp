@@ -46,11 +46,7 @@ void SealedFile::commit() {
     H5G_info_t info;
     h5::check(H5Gget_info(file_, &info), "H5Gget_info");
     for (hsize_t k = 0; k < info.nlinks; ++k) {
-        const ssize_t len = H5Lget_name_by_idx(file_, ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, k,
-                                               nullptr, 0, H5P_DEFAULT);
-        std::string name(size_t(std::max<ssize_t>(len, 0)), '\0');
-        H5Lget_name_by_idx(file_, ".", H5_INDEX_CRT_ORDER, H5_ITER_INC, k, name.data(),
-                           size_t(len) + 1, H5P_DEFAULT);
+        const std::string name = h5::link_name(file_, H5_INDEX_CRT_ORDER, k);
         h5::Handle group(H5Gopen2(file_, name.c_str(), H5P_DEFAULT), H5Gclose, "open group");
         h5::seal(group, true);
     }

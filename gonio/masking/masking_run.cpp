@@ -2,11 +2,11 @@
 
 #include "core/float_mode.h"
 #include "core/threads.h"
+#include "gonio/io/result_writer.h"
 #include "gonio/io/sealed_file.h"
 #include "gonio/masking/facet_sampler.h"
 #include "gonio/table/result_case.h"
 #include "gonio/trace/scene.h"
-#include "gonio_version.h"
 #include "heightfield/ndf/ndf_table.h"
 #include "heightfield/ndf/tabulated_ndf.h"
 #include "heightfield/surface_source.h"
@@ -102,13 +102,7 @@ void write_masking_file(const std::string& path, bool overwrite, const Config& c
                         const std::string& command_line, const MaskingOptions& o,
                         const std::vector<CaseMasking>& cases) {
     SealedFile file(path, overwrite, "a masking file");
-    h5::write_string_attribute(file, "file_format", "gonio-masking 1");
-    h5::write_string_attribute(file, "gonio_version", kVersion);
-    h5::write_string_attribute(file, "git_hash", kGitHash);
-    h5::write_string_attribute(file, "command_line", command_line);
-    h5::write_int_attribute(file, "seed", static_cast<long long>(cfg.seed));
-    h5::write_string_attribute(file, "config_path", cfg.path);
-    h5::write_string_attribute(file, "config_effective_toml", cfg.effective_toml);
+    write_provenance(file, "gonio-masking 1", cfg, command_line);
     h5::write_int_attribute(file, "points_per_surface", o.points);
     h5::write_int_attribute(file, "g2_points_per_surface", std::min(o.points, o.g2_points));
     std::vector<std::string> names;

@@ -196,12 +196,7 @@ std::vector<NumberedUnit> read_units(const std::string& path, UnitFileHeader* he
     H5G_info_t info;
     h5::check(H5Gget_info(f, &info), "H5Gget_info");
     for (hsize_t k = 0; k < info.nlinks; ++k) {
-        const ssize_t len =
-            H5Lget_name_by_idx(f, ".", H5_INDEX_NAME, H5_ITER_INC, k, nullptr, 0, H5P_DEFAULT);
-        if (len < 0) throw std::runtime_error("a damaged list of records");
-        std::string name(size_t(len), '\0');
-        H5Lget_name_by_idx(f, ".", H5_INDEX_NAME, H5_ITER_INC, k, name.data(), size_t(len) + 1,
-                           H5P_DEFAULT);
+        const std::string name = h5::link_name(f, H5_INDEX_NAME, k);
         if (name.rfind("unit_", 0) != 0) continue;
         {
             h5::Handle d(H5Dopen2(f, name.c_str(), H5P_DEFAULT), H5Dclose, name.c_str());
