@@ -34,10 +34,15 @@ def make_result(gonio, work):
            "--no-cache", "--set", "trace.rays=65536", "--set", "surface.realisations=1",
            "--set", "beam.theta_i=[0,45,70]",
            "--set", 'case.ggx_0.3.material={type = "dielectric", eta = 1.5}',
-           "--set", 'case.beckmann_0.5.model.models=["l1", "smith_measured_ndf", "measured_g1", "measured"]']
+           "--set", 'case.beckmann_0.5.model.models=["l1", "smith_measured_ndf", "measured_g1", "measured", '
+           '"heitz16"]']
     here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     subprocess.run(cmd, check=True, cwd=here)
-    return out
+    # A fit of the first case, shown with it (its residual map and its parameters).
+    fit = os.path.join(work, "report_fit.json")
+    subprocess.run([gonio, "fit", out, "--case", "beckmann_0.5", "--model", "beckmann", "--bootstrap", "4",
+                    "-o", fit, "--overwrite", "--quiet"], check=True)
+    return out, fit
 
 
 def browser():
@@ -125,10 +130,11 @@ def main():
     p.add_argument("--result")
     a = p.parse_args()
     os.makedirs(a.work, exist_ok=True)
-    result = a.result or make_result(os.path.abspath(a.gonio), a.work)
+    result, fit = (a.result, None) if a.result else make_result(os.path.abspath(a.gonio), a.work)
     page = os.path.join(os.path.abspath(a.work), "report.html")
     t0 = time.time()
-    subprocess.run([a.gonio, "report", result, "-o", page, "--overwrite"], check=True)
+    subprocess.run([a.gonio, "report", result, "-o", page, "--overwrite"] + (["--fit", fit] if fit else []),
+                   check=True)
     written = time.time() - t0
     size = os.path.getsize(page)
 
@@ -151,6 +157,12 @@ def main():
             views.append("decomposition")
             if "map-step_1" not in maps:
                 fail("no per-cell maps of the decomposition's steps: " + str(maps))
+            # The random walk's orders 2 and up against simulated L2+, and the fit's residuals.
+            if "map-sigma2_heitz16" not in maps or "map-fit_0" not in maps:
+                fail("no L2+ sigma map of heitz16 or no fit residual map: " + str(maps))
+            rows = driver.execute_script("return document.querySelectorAll('#fits tr').length")
+            if rows != 2:
+                fail(f"the fits table has {rows} rows, not a header and one fit")
         for view in views:
             fp = driver.execute_script(FINGERPRINT, view)
             if not fp or fp[1] == 0:

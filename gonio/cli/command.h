@@ -37,6 +37,7 @@ const Command& keys_command();
 const Command& export_command();
 const Command& report_command();
 const Command& masking_command();
+const Command& fit_command();
 const Command& render_command();
 const Command& cache_command();
 

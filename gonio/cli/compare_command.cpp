@@ -58,6 +58,52 @@ void print_decomposition(const ResultSummary& s) {
     }
 }
 
+// The models of every order that know their single scattering (heitz16, kulla_conty, turquin,
+// vcavity), order by order: each one's L1, L2+ and L-infinity albedos beside the simulated ones,
+// and its L2+ against simulated L2+ (relative difference, sigmas, per-cell distance).
+void print_orders(const ResultSummary& s) {
+    bool header = false;
+    for (const CaseSummary& c : s.cases) {
+        std::vector<std::string> models;
+        for (const std::string& m : c.models)
+            if (c.albedos.count(m + "_l2plus_relative_difference")) models.push_back(m);
+        if (models.empty() || c.albedos.count("l1_albedo") == 0) continue;
+        if (!header)
+            std::printf("\nMultiple scattering, order by order: each model of every order against "
+                        "the simulated orders (its L2+ held against simulated L2+)\n"
+                        "%-20s %7s %7s %3s %-11s %18s %18s %18s %18s %18s %7s %18s\n",
+                        "case", "theta_i", "phi_i", "ch", "model", "model_L1", "model_L2+",
+                        "sim_L2+", "model_Linf", "L2+_rel_diff", "sigmas", "L2+_distance");
+        header = true;
+        auto get = [&](const std::string& name, size_t i) {
+            auto it = c.albedos.find(name);
+            return it == c.albedos.end() ? -1.0 : it->second[i];
+        };
+        auto pm = [&](const std::string& name, size_t i, const char* format) {
+            char v[64], e[32] = "";
+            std::snprintf(v, sizeof v, format, get(name, i));
+            if (c.albedos.count(name + "_stderr"))
+                std::snprintf(e, sizeof e, "±%.1e", get(name + "_stderr", i));
+            std::printf(" %18s", (std::string(v) + e).c_str());
+        };
+        const size_t np = c.phi_i_deg.size(), nc = size_t(c.channels);
+        for (size_t i = 0; i < c.theta_i_deg.size() * np * nc; ++i)
+            for (const std::string& m : models) {
+                const size_t t = i / (np * nc), p = (i / nc) % np;
+                std::printf("%-20s %7.2f %7.2f %3zu %-11s", c.name.c_str(), c.theta_i_deg[t],
+                            c.phi_i_deg[p], i % nc, m.c_str());
+                pm("model_" + m + "_l1_albedo", i, "%.6f");
+                pm("model_" + m + "_l2plus_albedo", i, "%.6f");
+                pm("l2plus_albedo", i, "%.6f");
+                pm("model_" + m + "_albedo", i, "%.6f");
+                pm(m + "_l2plus_relative_difference", i, "%+.4f");
+                std::printf(" %+7.1f", get(m + "_l2plus_sigmas", i));
+                pm(m + "_l2plus_distance", i, "%.4f");
+                std::printf("\n");
+            }
+    }
+}
+
 int compare(const std::string& path) {
     const ResultSummary s = read_result_summary(path);
     // One row per incidence, channel and model: the model's albedo against the simulated
@@ -115,6 +161,7 @@ int compare(const std::string& path) {
                             std::printf(" %10s\n", "-");
                     }
     }
+    print_orders(s);
     print_decomposition(s);
     // What the errors above include: with one surface, only the rays.
     for (const CaseSummary& c : s.cases)

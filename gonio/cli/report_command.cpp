@@ -52,6 +52,9 @@ std::function<int()> setup(CLI::App& app, const CliContext&) {
     app.add_option("-o,--output", a->output, "The HTML page")->required();
     app.add_option("--image", a->source.images,
                    "A PNG to show with it (gonio render's; repeatable)");
+    app.add_option("--fit", a->source.fits,
+                   "A fit of one of its cases to show with it (gonio fit -o FIT.json; "
+                   "repeatable)");
     app.add_flag("--overwrite", a->overwrite, "Replace an existing output file");
     app.add_flag("-q,--quiet", a->quiet, "Print nothing on success");
     return [a] { return report(*a); };

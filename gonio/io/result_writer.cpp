@@ -218,11 +218,25 @@ void ResultWriter::write_models(CaseGroup& g, const std::vector<ModelResult>& mo
         g.put(m + "_seconds", r.seconds);
         if (r.tolerance_reached > tolerance) // a cell ran out of quadrature pieces
             h5::write_double_attribute(g.group, m + "_tolerance_reached", r.tolerance_reached);
-        if (!r.l1.empty()) { // the V-cavity's orders
+        if (!r.l1.empty()) { // a model that knows its single scattering
             g.put(m + "_l1", r.l1);
+            g.put(m + "_l2plus", r.l2plus);
+            if (!r.l2plus_stderr.empty()) g.put(m + "_l2plus_stderr", r.l2plus_stderr);
             g.put(m + "_l1_albedo", r.l1_albedo);
-            g.put(m + "_l2_albedo", r.l2_albedo);
             g.put(m + "_l2plus_albedo", r.l2plus_albedo);
+        }
+        if (!r.l2_albedo.empty()) { // and a Monte Carlo one, its orders
+            g.put(m + "_l2_albedo", r.l2_albedo);
+            if (!g.scales.count("model_order"))
+                g.add_scale("model_order", {1, 2, 3}, "1",
+                            "bounce order of a model; the last one holds every order from it up",
+                            true);
+            g.put(m + "_order_albedo", r.order_albedo);
+            g.put(m + "_order_albedo_stderr", r.order_albedo_stderr);
+            if (!r.order_transmittance.empty()) {
+                g.put(m + "_order_transmittance", r.order_transmittance);
+                g.put(m + "_order_transmittance_stderr", r.order_transmittance_stderr);
+            }
         }
     }
     h5::write_string_list_attribute(g.group, "models", names);
@@ -302,23 +316,30 @@ void ResultWriter::write_simulation_case(const CaseConfig& c, const BeckersSenso
         h5::write_double_attribute(g.group, "target_max_seconds", c.trace.target.max_seconds);
     }
     write_models(g, models, c.model.quadrature.rel_tol);
-    // Each model against what it models (single scattering or every order), with errors.
-    for (size_t mi = 0; mi < models.size(); ++mi) {
-        const ModelResult& model = models[mi];
-        const ComparisonArrays& cmp = sim.comparisons.at(mi);
-        const std::string what = model.compared_with == ModelTarget::linf ? "every order" : "L1";
-        const std::string n = model.name;
+    // Each model against what it models (single scattering or every order), with errors, and a
+    // model of every order that knows its single scattering, its orders 2 and up against L2+.
+    auto write_comparison = [&](const std::string& n, const std::string& model,
+                                const std::string& what, const ComparisonArrays& cmp) {
         g.put(n + "_relative_difference", cmp.relative_difference,
-              "(simulated " + what + " albedo - model_" + n + " albedo) / model_" + n + " albedo");
+              "(simulated " + what + " albedo - " + model + " albedo) / " + model + " albedo");
         g.put(n + "_sigmas", cmp.sigmas, nullptr,
-              "(simulated " + what + " albedo - model_" + n +
+              "(simulated " + what + " albedo - " + model +
                   " albedo) in standard errors of the difference");
         g.put(n + "_distance", cmp.distance,
               "sum |f_sim - f_model| Omega_perp / sum f_model Omega_perp over the cells (" + what +
-                  " against model_" + n + ")");
+                  " against " + model + ")");
         g.put(n + "_ratio", cmp.ratio,
-              "simulated " + what + " / model_" + n +
+              "simulated " + what + " / " + model +
                   " per cell (0 where the model is below 1e-12 of its peak)");
+    };
+    for (size_t mi = 0; mi < models.size(); ++mi) {
+        const ModelResult& model = models[mi];
+        const ComparisonArrays& cmp = sim.comparisons.at(mi);
+        const std::string n = model.name;
+        write_comparison(n, "model_" + n,
+                         model.compared_with == ModelTarget::linf ? "every order" : "L1", cmp);
+        if (!cmp.l2plus.empty())
+            write_comparison(n + "_l2plus", "model_" + n + "_l2plus", "L2+", cmp.l2plus[0]);
     }
 }
 

@@ -32,7 +32,8 @@ SimulationResult::SimulationResult(std::vector<double> theta_i_deg, std::vector<
     projected_solid_angle_ = sensor.projected_solid_angles();
 }
 
-void SimulationResult::allocate(const TraceResult& r, size_t models, bool ensemble) {
+void SimulationResult::allocate(const TraceResult& r, const std::vector<Comparison>& models,
+                                bool ensemble) {
     orders_ = r.orders;
     const size_t nt = theta_i_deg_.size(), np = phi_i_deg_.size(), no = size_t(r.orders),
                  ncell = size_t(r.cells), nc = size_t(r.channels);
@@ -91,19 +92,25 @@ void SimulationResult::allocate(const TraceResult& r, size_t models, bool ensemb
         share_l1_cells = share("the L1 BRDF (median over the cells >= 0.1 of the peak)");
         share_linf_cells = share("the L-infinity BRDF (median over the cells >= 0.1 of the peak)");
     }
-    comparisons.assign(models, {});
-    for (ComparisonArrays& c : comparisons) {
+    auto comparison = [&] {
+        ComparisonArrays c;
         c.relative_difference = estimate(per_channel, s3, "1", "relative difference of albedos");
         c.distance = estimate(per_channel, s3, "1", "relative L1 distance of the cells");
         c.sigmas = Array(per_channel, s3, "1", "albedo difference in standard errors");
         c.ratio = estimate(per_cell, s4, "1", "simulated / model per cell");
+        return c;
+    };
+    comparisons.clear();
+    for (const Comparison& m : models) {
+        comparisons.push_back(comparison());
+        if (!m.l2plus.empty()) comparisons.back().l2plus.push_back(comparison());
     }
 }
 
 void SimulationResult::put(size_t t, size_t p, const TraceResult& r,
                            const std::vector<Comparison>& models, const SurfaceShares* shares,
                            int surfaces) {
-    if (done_ == 0) allocate(r, models.size(), shares != nullptr);
+    if (done_ == 0) allocate(r, models, shares != nullptr);
     GONIO_CHECK_MSG((shares != nullptr) == (error_scope == ErrorScope::rays_and_surface),
                     "ensembles and single surfaces mixed");
     GONIO_CHECK(t < theta_i_deg_.size() && p < phi_i_deg_.size() && !filled_[index(t, p)]);
@@ -167,9 +174,7 @@ void SimulationResult::put(size_t t, size_t p, const TraceResult& r,
     }
     achieved_error.at({t, p}) = r.achieved_error;
     stop[index(t, p)] = r.stop;
-    for (size_t m = 0; m < models.size(); ++m) {
-        ComparisonArrays& c = comparisons[m];
-        const Comparison& x = models[m];
+    auto put_comparison = [&](ComparisonArrays& c, const Comparison& x) {
         c.relative_difference.mean.put({t, p}, x.relative_difference);
         c.relative_difference.error.put({t, p}, x.relative_difference_stderr);
         c.distance.mean.put({t, p}, x.distance);
@@ -177,6 +182,11 @@ void SimulationResult::put(size_t t, size_t p, const TraceResult& r,
         c.sigmas.put({t, p}, x.sigmas);
         c.ratio.mean.put({t, p}, x.ratio);
         c.ratio.error.put({t, p}, x.ratio_stderr);
+    };
+    for (size_t m = 0; m < models.size(); ++m) {
+        GONIO_CHECK(models[m].l2plus.size() == comparisons[m].l2plus.size());
+        put_comparison(comparisons[m], models[m]);
+        if (!models[m].l2plus.empty()) put_comparison(comparisons[m].l2plus[0], models[m].l2plus[0]);
     }
     filled_[index(t, p)] = true;
     ++done_;

@@ -48,6 +48,7 @@ struct ComparisonArrays {
     Estimate relative_difference, distance; // [theta_i, phi_i, channel]
     Array sigmas;                           // [theta_i, phi_i, channel]
     Estimate ratio;                         // [theta_i, phi_i, cell, channel]
+    std::vector<ComparisonArrays> l2plus;   // its orders 2 and up against simulated L2+
 };
 
 class SimulationResult {
@@ -83,7 +84,7 @@ class SimulationResult {
     std::string surface;                       // where the surface came from (cache path, input)
 
   private:
-    void allocate(const TraceResult& r, size_t models, bool ensemble);
+    void allocate(const TraceResult& r, const std::vector<Comparison>& models, bool ensemble);
     size_t index(size_t t, size_t p) const { return t * phi_i_deg_.size() + p; }
 
     std::vector<double> theta_i_deg_, phi_i_deg_, projected_solid_angle_;

@@ -185,6 +185,11 @@ class SurfacePointModel final : public CellModel {
             for (int k = 0; k < nc; ++k) r.l1_albedo[size_t(k)] += r.energy[size_t(c) * nc + k];
         r.l2_albedo.assign(size_t(nc), 0.0);
         r.l2plus_albedo.assign(size_t(nc), 0.0);
+        r.l1_energy_batches = r.energy_batches;
+        r.order_albedo.assign(size_t(ModelIncidence::kOrderBins * nc), 0.0);
+        r.order_albedo_stderr = r.order_albedo;
+        std::copy(r.l1_albedo.begin(), r.l1_albedo.end(), r.order_albedo.begin());
+        std::copy(r.albedo_stderr.begin(), r.albedo_stderr.end(), r.order_albedo_stderr.begin());
         r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return r;
     }

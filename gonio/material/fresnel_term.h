@@ -21,6 +21,10 @@ class FresnelTerm {
     int channels() const { return channels_; }
     // The real relative index of channel c (dielectric only).
     double dielectric_eta(int c) const { return real_.at(size_t(c)); }
+    // The complex relative index of channel c (conductor only).
+    std::complex<double> conductor_eta(int c) const { return complex_.at(size_t(c)); }
+    // The reflectance at normal incidence of channel c (Schlick only).
+    double schlick_f0(int c) const { return real_.at(size_t(c)); }
     // Reflectance for cos_i = i.m in [0, 1], one value per channel into out[0..channels).
     void eval(double cos_i, double* out) const;
     std::string describe() const;

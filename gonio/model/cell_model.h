@@ -16,12 +16,13 @@
 
 namespace gonio {
 
-// The simulated quantity a model is held against: single scattering, or every order.
-enum class ModelTarget { l1, linf };
+// The simulated quantity a model is held against: single scattering, every order, or (for the
+// part of a multiple-scattering model beyond its single scattering) orders 2 and up.
+enum class ModelTarget { l1, linf, l2plus };
 template <>
 struct EnumNames<ModelTarget> {
     static constexpr const char* what = "simulated quantity";
-    static constexpr const char* names[] = {"l1", "linf"};
+    static constexpr const char* names[] = {"l1", "linf", "l2plus"};
 };
 
 // One model at one incidence. Arrays are [cell][channel] (energies, fractions of the incident
@@ -37,8 +38,24 @@ struct ModelIncidence {
     std::vector<double> albedo_stderr;
     std::vector<double> l1_energy;
     std::vector<double> l1_albedo, l2_albedo, l2plus_albedo;
+    // Models of every order that know their single scattering (the Monte Carlo ones, the
+    // compensated analytic ones): l1_energy above ([cell][channel]) and, when Monte Carlo, its
+    // batches, so that their orders 2 and up are held against simulated L2+ too.
+    std::vector<double> l1_energy_batches;
+    // Monte Carlo models of every order: the albedo of orders 1, 2 and 3 and up
+    // ([order][channel], kOrderBins orders) with standard errors, reflected and (for transmissive
+    // facets) transmitted.
+    static constexpr int kOrderBins = 3;
+    std::vector<double> order_albedo, order_albedo_stderr;
+    std::vector<double> order_transmittance, order_transmittance_stderr;
     bool monte_carlo() const { return batches > 0; }
+    bool has_orders() const { return !l1_energy.empty(); }
 };
+
+struct TraceResult;
+// A Monte Carlo model's record from its estimate, binned in orders 1, 2 and 3 and up
+// (TraceSettings::orders = 2): every order, order 1 and the albedos of each.
+ModelIncidence monte_carlo_incidence(const TraceResult& estimate);
 
 class CellModel {
   public:

@@ -8,11 +8,12 @@
 namespace gonio {
 
 Comparison compare_model(const TraceResult& sim, ModelTarget target, const ModelIncidence& model) {
-    const bool all_orders = target == ModelTarget::linf;
+    const int from = target == ModelTarget::l2plus ? 1 : 0;
+    const int to = target == ModelTarget::l1 ? 1 : sim.orders;
     const size_t nc = size_t(sim.channels), cells = size_t(sim.cells), map = cells * nc;
     const int B = sim.batches, MB = model.batches;
     const std::vector<double> s_batches =
-        sum_orders(sim.energy_batches, B, sim.orders, 0, all_orders ? sim.orders : 1);
+        sum_orders(sim.energy_batches, B, sim.orders, from, to);
     const std::vector<double> s = batch_mean(s_batches, B), s_err = batch_stderr(s_batches, B);
     const std::vector<double> m_err =
         MB > 1 ? batch_stderr(model.energy_batches, MB) : std::vector<double>(map, 0.0);
@@ -79,6 +80,22 @@ Comparison compare_model(const TraceResult& sim, ModelTarget target, const Model
             c.ratio_stderr[i] = std::hypot(s_err[i] / m[i], s[i] * me / (m[i] * m[i]));
         }
     }
+    return c;
+}
+
+Comparison compare_case_model(const TraceResult& sim, ModelTarget target,
+                              const ModelIncidence& model) {
+    Comparison c = compare_model(sim, target, model);
+    if (target != ModelTarget::linf || !model.has_orders()) return c;
+    ModelIncidence rest; // every order but the first
+    rest.energy = model.energy;
+    for (size_t i = 0; i < rest.energy.size(); ++i) rest.energy[i] -= model.l1_energy[i];
+    rest.relative_tolerance = model.relative_tolerance;
+    rest.batches = model.batches;
+    rest.energy_batches = model.energy_batches;
+    for (size_t i = 0; i < rest.energy_batches.size(); ++i)
+        rest.energy_batches[i] -= model.l1_energy_batches[i];
+    c.l2plus.push_back(compare_model(sim, ModelTarget::l2plus, rest));
     return c;
 }
 

@@ -19,9 +19,16 @@ struct Comparison {
     std::vector<double> distance, distance_stderr;
     // sim / model per cell (0 where the model is below 1e-12 of its brightest cell)
     std::vector<double> ratio, ratio_stderr;
+    // A model of every order that knows its single scattering: its orders 2 and up against
+    // simulated L2+ (one element), else empty.
+    std::vector<Comparison> l2plus;
 };
 
-// The model against simulated L1 or L-infinity, as `target` says.
+// The model against simulated L1, L-infinity or L2+, as `target` says.
 Comparison compare_model(const TraceResult& sim, ModelTarget target, const ModelIncidence& model);
+// The same for a model of the case: held against what it models and, when it models every order
+// and knows its single scattering, its orders 2 and up against simulated L2+ as well.
+Comparison compare_case_model(const TraceResult& sim, ModelTarget target,
+                              const ModelIncidence& model);
 
 } // namespace gonio

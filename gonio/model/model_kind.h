@@ -76,6 +76,9 @@ std::vector<KeyGroup> ashikhmin_key_groups(); // the nested table model.ashikhmi
 const ModelKind& l1_model_kind();
 const ModelKind& il_model_kind();
 const ModelKind& vcavity_model_kind();
+const ModelKind& heitz16_model_kind();
+const ModelKind& kulla_conty_model_kind();
+const ModelKind& turquin_model_kind();
 const ModelKind& ashikhmin_model_kind();
 const ModelKind& pbrdf_model_kind();
 // The decomposition of simulated L1 - Model L1 (gonio/masking/surface_point_model.cpp).

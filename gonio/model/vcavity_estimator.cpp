@@ -117,22 +117,7 @@ class VCavityModel final : public CellModel {
         st.orders = 2; // f1, f2, then every higher order together [M18 Fig. 9]
         st.max_bounces = max_bounces_;
         st.seed = seed, st.stream = stream;
-        const TraceResult v = vcavity_estimate(*ndf_, *facet_, sensor, wi, st);
-        const int no = v.orders;
-        // Sums over orders of the means, [order][n] (one batch), and of the batches.
-        auto orders = [&](const std::vector<double>& x, int from, int to) {
-            return sum_orders(x, 1, no, from, to);
-        };
-        ModelIncidence m;
-        m.energy = orders(v.energy, 0, no);
-        m.l1_energy = orders(v.energy, 0, 1);
-        m.l1_albedo = orders(v.ledger.reflected, 0, 1);
-        m.l2_albedo = orders(v.ledger.reflected, 1, 2);
-        m.l2plus_albedo = orders(v.ledger.reflected, 1, no);
-        m.batches = v.batches;
-        m.energy_batches = sum_orders(v.energy_batches, v.batches, no, 0, no);
-        m.albedo_stderr =
-            batch_stderr(sum_orders(v.ledger_batches.reflected, v.batches, no, 0, no), v.batches);
+        ModelIncidence m = monte_carlo_incidence(vcavity_estimate(*ndf_, *facet_, sensor, wi, st));
         m.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return m;
     }

@@ -12,6 +12,7 @@ namespace gonio {
 struct ReportSource {
     std::string result;              // the HDF5 result file
     std::vector<std::string> images; // PNG renders to show with it (gonio render's output)
+    std::vector<std::string> fits;   // gonio fit's JSON files of its cases (parameters, residuals)
 };
 
 // The page's data. Throws std::runtime_error naming the file and dataset when the file cannot be

@@ -98,7 +98,24 @@ function mapSet(c, m, n) {
       return e > 0 ? (v - mv[k]) / e : NaN;
     });
     list.push({ key: "sigma_" + name, title: (every ? "L∞" : "L1") + " − " + name + " (σ)", v: s, brdf: false });
+    // A model of every order that knows its single scattering: its L2+ against simulated L2+.
+    const m2 = get("model_" + name + "_l2plus"), e2 = get("l2plus_stderr");
+    if (every && m2 && l2 && e2) {
+      const me2 = get("model_" + name + "_l2plus_stderr");
+      list.push({ key: "sigma2_" + name, title: "L2+ − " + name + " L2+ (σ)", brdf: false,
+                  v: l2.map((v, k) => {
+                    const e = Math.sqrt(e2[k] * e2[k] + (me2 ? me2[k] * me2[k] : 0));
+                    return e > 0 ? (v - m2[k]) / e : NaN;
+                  }) });
+    }
   }
+  // Fits of this case (gonio fit): (data - fit) / sigma per cell.
+  (D.fits || []).forEach((f, i) => {
+    if (f.case !== c.name) return;
+    if (!decoded.has("fit" + i)) decoded.set("fit" + i, floats(f.residuals));
+    const v = cellValues(decoded.get("fit" + i), c, n);
+    list.push({ key: "fit_" + i, title: "fit " + f.fit.model + " (" + f.fit.data + "): (data − fit)/σ", v, brdf: false });
+  });
   // The decomposition's steps per cell (when the case has the chain's models), in 1/sr.
   const chain = CHAIN.map((n) => get("model_" + n));
   if (chain.every((v) => v)) {
@@ -205,6 +222,7 @@ function drawAlbedo(c) {
   line("linf_albedo", "simulated L∞", "linf_albedo_stderr");
   line("transmitted_albedo", "simulated T", "transmitted_albedo_stderr");
   for (const name of c.models) line("model_" + name + "_albedo", "model " + name, "model_" + name + "_albedo_stderr");
+  for (const name of c.models) line("model_" + name + "_l2plus_albedo", "model " + name + " L2+");
   const x = c.theta_i[state.t];
   Plotly.react("albedo", traces, {
     margin: { t: 20 }, xaxis: { title: "θi (°)" }, yaxis: { title: "albedo" }, legend: { orientation: "h" },
@@ -271,6 +289,23 @@ function drawDecomposition(c) {
   }, { displaylogo: false, responsive: true });
 }
 
+// The fits of the case: parameters with their errors, chi2/dof.
+function drawFits(c) {
+  const rows = (D.fits || []).filter((f) => f.case === c.name);
+  $("fits-section").style.display = rows.length ? "" : "none";
+  const t = $("fits");
+  t.innerHTML = "<tr><th>file</th><th>model</th><th>data</th><th>loss</th><th>parameters (Ceres σ; bootstrap σ)</th><th>χ²/dof</th></tr>";
+  for (const f of rows) {
+    const ps = Object.entries(f.parameters).map(([k, p]) =>
+      k + " = " + fmt(p.value, 5) + " ± " + fmt(p.stderr, 2) + (p.stderr_bootstrap !== undefined ? "; " + fmt(p.stderr_bootstrap, 2) : ""));
+    const tr = document.createElement("tr");
+    for (const v of [f.file, f.fit.model + (f.fit.with !== "none" ? " + " + f.fit.with : ""), f.fit.data, f.fit.loss, ps.join(", "), fmt(f.fit.chi2_per_dof, 4)]) {
+      const td = document.createElement("td"); td.textContent = v; tr.appendChild(td);
+    }
+    t.appendChild(tr);
+  }
+}
+
 function draw() {
   const c = D.cases[state.c], sensor = D.sensors[c.sensor], m = maps(state.c);
   $("incidence").textContent = c.name + " at θi " + c.theta_i[state.t] + "°, φi " + c.phi_i[state.p] + "°";
@@ -281,6 +316,7 @@ function draw() {
   drawLedger(c);
   drawNdf(c);
   drawDecomposition(c);
+  drawFits(c);
   document.body.dataset.drawn = c.name + "|" + state.t + "|" + state.p + "|" + state.ch;
 }
 

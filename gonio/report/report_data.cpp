@@ -5,6 +5,7 @@
 #include "heightfield/ndf/ndf_family.h"
 #include "sensor/beckers_sensor.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -153,6 +154,7 @@ json case_json(const ResultSummary& summary, const CaseSummary& s) {
         put_map("l1", "brdf_l1");
         put_map("l1_stderr", "brdf_l1_stderr");
         put_map("l2plus", "brdf_l2plus");
+        put_map("l2plus_stderr", "brdf_l2plus_stderr");
         bool every_order = false;
         for (const std::string& m : s.models)
             every_order |= attribute(s.attributes, "model_" + m + "_compared_with") == "linf";
@@ -162,6 +164,8 @@ json case_json(const ResultSummary& summary, const CaseSummary& s) {
     for (const std::string& m : s.models) {
         put_map("model_" + m, "model_" + m);
         put_map("model_" + m + "_stderr", "model_" + m + "_stderr");
+        put_map("model_" + m + "_l2plus", "model_" + m + "_l2plus");
+        put_map("model_" + m + "_l2plus_stderr", "model_" + m + "_l2plus_stderr");
     }
     out["maps"] = maps;
 
@@ -229,6 +233,41 @@ nlohmann::json report_data(const ReportSource& source) {
         images.push_back({{"name", std::filesystem::path(path).filename().string()},
                           {"src", png_data_url(path)}});
     data["images"] = images;
+    // Fits of the file's cases (gonio fit -o FIT.json): parameters, and the residual map (data -
+    // fit) / sigma, shown beside the case's maps.
+    json fits = json::array();
+    for (const std::string& path : source.fits) {
+        std::ifstream in(path);
+        if (!in) throw std::runtime_error(path + ": cannot read the fit");
+        json f;
+        try {
+            in >> f;
+        } catch (const std::exception& e) {
+            throw std::runtime_error(path + ": not a gonio fit JSON file (" + e.what() + ")");
+        }
+        if (!f.contains("fit") || !f.contains("parameters") || !f.contains("residuals"))
+            throw std::runtime_error(path + ": not a gonio fit JSON file (gonio fit -o FIT.json)");
+        const std::string name = f["fit"].value("case", "");
+        const auto it = std::find_if(summary.cases.begin(), summary.cases.end(),
+                                     [&](const CaseSummary& c) { return c.name == name; });
+        if (it == summary.cases.end())
+            throw std::runtime_error(path + ": a fit of case '" + name + "', which " +
+                                     source.result + " does not hold");
+        const json& r = f["residuals"];
+        const size_t expected = it->theta_i_deg.size() * it->phi_i_deg.size() *
+                                size_t(it->cells) * size_t(it->channels);
+        if (!r["normalised"].is_array() || r["normalised"].size() != expected)
+            throw std::runtime_error(path + ": its residual map does not fit case " + name);
+        std::vector<double> z;
+        for (const json& v : r["normalised"])
+            z.push_back(v.is_number() ? v.get<double>() : std::nan(""));
+        fits.push_back({{"file", std::filesystem::path(path).filename().string()},
+                        {"case", name},
+                        {"fit", f["fit"]},
+                        {"parameters", f["parameters"]},
+                        {"residuals", base64_floats(z)}});
+    }
+    data["fits"] = fits;
     return nlohmann::json(data);
 }
 

@@ -39,7 +39,7 @@ void CaseAssembler::add(const UnitId& id, UnitResult&& u, const RunObserver& obs
     if (added_ == 0)
         for (size_t k = 0; k < u.models.size(); ++k)
             result_.models[k].allocate(c_.theta_i_deg.size(), c_.phi_i_deg.size(), psa.size(),
-                                       size_t(c_.channels()), u.models[k].monte_carlo());
+                                       size_t(c_.channels()), u.models[k]);
     // The unit's own times: its traces', then its models'.
     for (const TraceResult& m : u.members) result_.phases.add(Phase::trace, m.seconds);
     for (size_t k = 0; k < u.models.size(); ++k) {
@@ -79,7 +79,8 @@ void CaseAssembler::add(const UnitId& id, UnitResult&& u, const RunObserver& obs
         }
         most_surfaces_ = std::max(most_surfaces_, surfaces);
         for (size_t k = 0; k < u.models.size(); ++k)
-            comparisons.push_back(compare_model(all, result_.models[k].compared_with, u.models[k]));
+            comparisons.push_back(
+                compare_case_model(all, result_.models[k].compared_with, u.models[k]));
         result_.simulation.put(t, p, all, comparisons, ensemble ? &shares : nullptr, surfaces);
     }
     added_at_[at] = true;

@@ -115,10 +115,12 @@ template <class IO, class M>
 void model_fields(IO& io, M& m) {
     io(m.energy), io(m.seconds), io(m.relative_tolerance), io(m.batches), io(m.energy_batches);
     io(m.albedo_stderr), io(m.l1_energy), io(m.l1_albedo), io(m.l2_albedo), io(m.l2plus_albedo);
+    io(m.l1_energy_batches), io(m.order_albedo), io(m.order_albedo_stderr);
+    io(m.order_transmittance), io(m.order_transmittance_stderr);
 }
 // The fewest bytes one trace and one model's record take (their counts and sizes alone), so that
 // a corrupt count is refused before anything is allocated for it.
-constexpr std::uint64_t kMinTraceBytes = 29 * 8, kMinModelBytes = 7 * 8;
+constexpr std::uint64_t kMinTraceBytes = 29 * 8, kMinModelBytes = 12 * 8;
 template <class IO, class U, class Count>
 void unit_fields(IO& io, U& u, Count& count) {
     count(u.members, kMinTraceBytes);

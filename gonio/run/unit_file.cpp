@@ -11,7 +11,7 @@ namespace gonio {
 
 namespace {
 // 3: every unit record checksummed (HDF5's Fletcher-32 filter, checked on every read).
-constexpr const char* kFormat = "gonio-units 3";
+constexpr const char* kFormat = "gonio-units 4";
 
 void write_int(hid_t o, const char* name, long long v) {
     h5::write_int_attribute(o, name, v);
@@ -248,11 +248,19 @@ std::string trace_problem(const TraceResult& t, const CaseConfig& c) {
 std::string model_problem(const ModelIncidence& m, size_t cells, size_t nc) {
     if (m.energy.size() != cells * nc) return "a model whose arrays do not fit the case";
     if (m.batches < 0 || m.batches > 1 << 20) return "a model with a bad batch count";
+    if (m.has_orders() && m.l1_energy.size() != cells * nc)
+        return "a model whose single scattering does not fit the case";
     if (!m.monte_carlo()) return "";
+    const size_t orders = ModelIncidence::kOrderBins * nc;
+    const bool transmits = !m.order_transmittance.empty();
     const bool ok = m.energy_batches.size() == size_t(m.batches) * cells * nc &&
                     m.l1_energy.size() == cells * nc && m.albedo_stderr.size() == nc &&
                     m.l1_albedo.size() == nc && m.l2_albedo.size() == nc &&
-                    m.l2plus_albedo.size() == nc;
+                    m.l2plus_albedo.size() == nc &&
+                    m.l1_energy_batches.size() == m.energy_batches.size() &&
+                    m.order_albedo.size() == orders && m.order_albedo_stderr.size() == orders &&
+                    (!transmits || m.order_transmittance.size() == orders) &&
+                    m.order_transmittance_stderr.size() == m.order_transmittance.size();
     return ok ? "" : "a Monte Carlo model whose arrays do not fit the case";
 }
 

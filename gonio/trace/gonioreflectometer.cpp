@@ -105,6 +105,11 @@ TraceResult trace_incidence(const Scene& scene, const std::vector<const Material
         part.stream ^= std::uint64_t(p + 1) << 56; // streams apart from every case and incidence
         r.push_back(trace_incidence(scene, *parts[p], sensor, wi, part));
     }
+    return concatenate_channels(r);
+}
+
+TraceResult concatenate_channels(const std::vector<TraceResult>& r) {
+    if (r.size() == 1) return r[0];
     TraceResult res;
     res.orders = r[0].orders, res.cells = r[0].cells, res.batches = r[0].batches;
     // Rays, rounds and error: those of the part that needed the most (a target is met by each).

@@ -49,6 +49,10 @@ TraceResult trace_incidence(const Scene& scene, const std::vector<const Material
                             const BeckersSensor& sensor, const Vec3& wi,
                             const TraceSettings& settings);
 
+// The traces of the parts of a material (same rays, orders, cells and batches), one result whose
+// channels are theirs in order.
+TraceResult concatenate_channels(const std::vector<TraceResult>& parts);
+
 // The trace of every batch from parts that each traced a share of them (batch b from
 // parts[b mod parts.size()]), with the means and errors recomputed over all: what one process
 // tracing every batch gives, bit for bit.
