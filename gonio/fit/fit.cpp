@@ -18,8 +18,9 @@ namespace {
 struct LossResiduals {
     const FitProblem* problem;
     const std::vector<double>* data;
+    bool coarse;
     bool operator()(double const* const* p, double* residuals) const {
-        problem->residuals(problem->predict(p[0]), *data, residuals);
+        problem->residuals(problem->predict(p[0], coarse), *data, residuals);
         return true;
     }
 };
@@ -32,14 +33,14 @@ struct Solved {
 };
 
 Solved solve(const FitProblem& problem, const std::vector<double>& data,
-             const std::vector<double>& start, bool covariance, double step) {
+             const std::vector<double>& start, bool coarse, bool covariance, double step) {
     const int n = int(problem.parameters().size());
     Solved s;
     s.p = start;
     ceres::NumericDiffOptions diff;
     diff.relative_step_size = step;
     auto* cost = new ceres::DynamicNumericDiffCostFunction<LossResiduals, ceres::CENTRAL>(
-        new LossResiduals{&problem, &data}, ceres::TAKE_OWNERSHIP, diff);
+        new LossResiduals{&problem, &data, coarse}, ceres::TAKE_OWNERSHIP, diff);
     cost->AddParameterBlock(n);
     cost->SetNumResiduals(int(problem.residual_count()));
     ceres::Problem pb;
@@ -111,12 +112,13 @@ FitResult fit_result_case(const std::string& file, const FitOptions& options,
     Solved best;
     int done = 0, converged = 0;
     for (const std::vector<double>& p0 : from) {
-        Solved s = solve(problem, problem.data(), p0, false, step);
+        Solved s = solve(problem, problem.data(), p0, true, false, step);
         converged += s.converged;
         if (s.cost < best.cost) best = std::move(s);
         if (progress) progress(++done, total);
     }
-    best = solve(problem, problem.data(), best.p, true, step); // polish, with the covariance
+    // The best start polished at the full quadrature, with the covariance.
+    best = solve(problem, problem.data(), best.p, false, true, step);
 
     FitResult r;
     r.file = file;
@@ -156,7 +158,7 @@ FitResult fit_result_case(const std::string& file, const FitOptions& options,
             Rng rng{options.seed, 0x424f4f54 /* "BOOT" */, std::uint64_t(b), 0};
             std::vector<double> d = problem.data();
             for (size_t k = 0; k < d.size(); ++k) d[k] += problem.sigma()[k] * gaussian(rng);
-            fits.push_back(solve(problem, d, best.p, false, step).p);
+            fits.push_back(solve(problem, d, best.p, false, false, step).p);
             if (progress) progress(++done, total);
         }
         for (size_t k = 0; k < n; ++k) {

@@ -22,10 +22,11 @@ std::string number(double v) {
     return s.str();
 }
 // The cells' quadrature while fitting: the result file's models use 1e-6; a fit that moves its
-// parameters by more than 1e-4 of themselves needs no more than this.
-CellQuadrature fit_quadrature() {
+// parameters by more than 1e-4 of themselves needs no more than 1e-5, a search from several
+// starts no more than 1e-3.
+CellQuadrature fit_quadrature(bool coarse) {
     CellQuadrature q;
-    q.rel_tol = 1e-5;
+    q.rel_tol = coarse ? 1e-3 : 1e-5;
     return q;
 }
 } // namespace
@@ -178,7 +179,7 @@ std::string FitProblem::ndf_toml(const double* p) const {
     return t;
 }
 
-std::vector<double> FitProblem::predict(const double* p) const {
+std::vector<double> FitProblem::predict(const double* p, bool coarse) const {
     const std::vector<double> v = clamped(p);
     const std::shared_ptr<const Ndf> ndf = ndf_from_toml(ndf_toml(v.data()));
     const size_t nc = size_t(c_.channels), cells = size_t(c_.cells), np = c_.phi_i_deg.size();
@@ -186,7 +187,7 @@ std::vector<double> FitProblem::predict(const double* p) const {
     if (first_f0_ >= 0)
         fresnel = FresnelTerm::schlick(std::vector<double>(v.begin() + first_f0_, v.end()));
     const MaskingForm masking = c_.config.model.masking;
-    const CellQuadrature q = fit_quadrature();
+    const CellQuadrature q = fit_quadrature(coarse);
     std::shared_ptr<const AlbedoTable> table;
     if (o_.with == FitWith::kulla_conty || o_.with == FitWith::turquin)
         table = std::make_shared<const AlbedoTable>(AlbedoTable::smith(*ndf, masking, q));

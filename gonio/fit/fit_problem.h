@@ -31,8 +31,9 @@ class FitProblem {
     const std::vector<double>& sigma() const { return sigma_; } // per residual
 
     // The model's cell averages (1/sr) per residual, for parameters p (clamped to their bounds:
-    // numerical derivatives may step past them).
-    std::vector<double> predict(const double* p) const;
+    // numerical derivatives may step past them). `coarse`: the cells at a relative tolerance of
+    // 1e-3, for the search from several starts (the polish and every reported figure use 1e-5).
+    std::vector<double> predict(const double* p, bool coarse = false) const;
     // The residuals of the chosen loss for model values m against data d.
     void residuals(const std::vector<double>& m, const std::vector<double>& d, double* out) const;
     // (d - m) / sigma per residual.

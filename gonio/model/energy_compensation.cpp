@@ -16,7 +16,7 @@
 namespace gonio {
 
 namespace {
-constexpr int kAzimuths = 4; // of an anisotropic E, averaged
+constexpr int kAzimuths = 4; // an anisotropic E is averaged over 0, 45, 90 and 135 degrees
 
 // Nodes evenly spaced in theta from the normal to the horizon (theta_k = k pi / (2 (n - 1))),
 // where E varies evenly; the last is evaluated just above the horizon (E's grazing limit). A
@@ -54,17 +54,19 @@ double AlbedoTable::at(double mu) const {
 
 AlbedoTable AlbedoTable::smith(const Ndf& ndf, MaskingForm masking, const CellQuadrature& q) {
     const MicrofacetModel white(ndf, FresnelTerm::mirror(), masking);
-    const BeckersSensor sensor(577);
-    double ax = 0, ay = 0;
-    const bool isotropic = ndf.slope_stretch(ax, ay) && ax == ay;
-    const int azimuths = isotropic ? 1 : kAzimuths;
+    // The albedo is a sum over the cells, each integrated adaptively to q's tolerance: few large
+    // cells cost least (the lobe's refinement is the same whatever their number).
+    const BeckersSensor sensor(145);
+    const int azimuths = ndf.isotropic() ? 1 : kAzimuths;
+    CellQuadrature table_q = q;
+    table_q.rel_tol = std::max(q.rel_tol, 1e-5); // per cell; the sum's error averages out
     std::vector<double> e(size_t(kNodes * azimuths), 0.0);
     parallel_for(0, kNodes * azimuths, [&](long long job) {
         const int k = int(job / azimuths), a = int(job % azimuths);
         const double mu = node_mu(k);
         const Vec3 wi = spherical_direction(std::acos(mu), kPi * a / azimuths);
         double sum = 0;
-        for (double x : model_cell_energy(white, wi, sensor, q)) sum += x;
+        for (double x : model_cell_energy(white, wi, sensor, table_q)) sum += x;
         e[size_t(job)] = sum; // summed over the azimuths below, in order
     });
     std::vector<double> mean(kNodes, 0.0);
@@ -225,6 +227,30 @@ CompensationKeys keys_of(const std::string& name) {
                 .fallback(65536.0)};
 }
 
+// A case's Smith E(mu) table, made once whichever model and unit needs it first (kulla_conty and
+// turquin of one case share it): keyed by the case's distribution (held weakly: a table outlives
+// no case), its masking and quadrature. (A surface's table is made by each model that asks.)
+std::shared_ptr<const AlbedoTable> smith_table(const std::shared_ptr<const Ndf>& ndf,
+                                               MaskingForm masking, const CellQuadrature& q) {
+    struct Entry {
+        std::weak_ptr<const Ndf> ndf;
+        MaskingForm masking;
+        double tolerance;
+        std::shared_ptr<const AlbedoTable> table;
+    };
+    static std::mutex lock;
+    static std::vector<Entry> entries;
+    std::lock_guard<std::mutex> guard(lock); // tables are made one at a time (each is parallel)
+    entries.erase(std::remove_if(entries.begin(), entries.end(),
+                                 [](const Entry& e) { return e.ndf.expired(); }),
+                  entries.end());
+    for (const Entry& e : entries)
+        if (e.ndf.lock() == ndf && e.masking == masking && e.tolerance == q.rel_tol) return e.table;
+    auto table = std::make_shared<const AlbedoTable>(AlbedoTable::smith(*ndf, masking, q));
+    entries.push_back({ndf, masking, q.rel_tol, table});
+    return table;
+}
+
 ModelChoice read_compensation(TableReader& r, const ModelContext& c, Compensation kind,
                               const std::string& name, const CompensationKeys& keys,
                               const std::string& what) {
@@ -243,18 +269,14 @@ ModelChoice read_compensation(TableReader& r, const ModelContext& c, Compensatio
                     (source == AlbedoSource::smith ? "Smith's model of the NDF"
                                                    : "the explicit surface (" +
                                                          std::to_string(rays) + " rays a node)");
-    // The table is computed once per case (the first build), whichever unit needs it first.
-    auto table = std::make_shared<std::shared_ptr<const AlbedoTable>>();
-    auto once = std::make_shared<std::once_flag>();
     m.build = [=, ndf = c.ndf, fresnel = c.facets.fresnel, masking = c.masking,
                quadrature = c.quadrature,
                backend = c.backend](const HeightField* surface) -> std::unique_ptr<CellModel> {
-        std::call_once(*once, [&] {
-            *table = std::make_shared<const AlbedoTable>(
-                source == AlbedoSource::smith ? AlbedoTable::smith(*ndf, masking, quadrature)
-                                              : AlbedoTable::surface(*surface, *backend, rays));
-        });
-        return compensated_model(kind, ndf, fresnel, masking, quadrature, *table);
+        return compensated_model(
+            kind, ndf, fresnel, masking, quadrature,
+            source == AlbedoSource::smith
+                ? smith_table(ndf, masking, quadrature)
+                : std::make_shared<const AlbedoTable>(AlbedoTable::surface(*surface, *backend, rays)));
     };
     return m;
 }

@@ -222,7 +222,8 @@ function drawAlbedo(c) {
   line("linf_albedo", "simulated L∞", "linf_albedo_stderr");
   line("transmitted_albedo", "simulated T", "transmitted_albedo_stderr");
   for (const name of c.models) line("model_" + name + "_albedo", "model " + name, "model_" + name + "_albedo_stderr");
-  for (const name of c.models) line("model_" + name + "_l2plus_albedo", "model " + name + " L2+");
+  for (const name of c.models)
+    if (c.compared_with[name] === "linf") line("model_" + name + "_l2plus_albedo", "model " + name + " L2+");
   const x = c.theta_i[state.t];
   Plotly.react("albedo", traces, {
     margin: { t: 20 }, xaxis: { title: "θi (°)" }, yaxis: { title: "albedo" }, legend: { orientation: "h" },

@@ -21,19 +21,11 @@ Vec3 polar(double theta, double phi) {
     return {s * std::cos(phi), s * std::sin(phi), std::cos(theta)};
 }
 
-bool isotropic(const Ndf& ndf) {
-    for (double theta : {0.1, 0.4, 0.8, 1.2, 1.5}) {
-        const double d0 = ndf.D(polar(theta, 0.0));
-        for (double phi : {0.7, 0.5 * kPi, 2.5})
-            if (std::abs(ndf.D(polar(theta, phi)) - d0) > 1e-9 * (d0 + 1e-300)) return false;
-    }
-    return true;
-}
 } // namespace
 
 AnisotropicBlend::Component AnisotropicBlend::prepare(std::unique_ptr<Ndf> ndf, const char* axis) {
     if (!ndf) throw std::invalid_argument(std::string("blend: missing the ") + axis + " curve");
-    if (!isotropic(*ndf))
+    if (!ndf->isotropic())
         throw std::invalid_argument(std::string("blend: the ") + axis + " curve (" +
                                     ndf->describe() + ") must be isotropic [R19 Eq. 10]");
     Component c;

@@ -63,4 +63,16 @@ double Ndf::pdf_visible(const Vec3& v, const Vec3& m) const {
     return G1(v) * vm * D(m) / v.z; // Heitz 2014, Eq. 16
 }
 
+bool Ndf::isotropic() const {
+    for (double theta_deg : {3.0, 12.0, 27.0, 45.0, 63.0, 78.0, 86.0}) {
+        const double reference = D(spherical_direction(radians(theta_deg), 0.0));
+        for (double phi_deg : {17.0, 45.0, 90.0, 131.0, 200.0, 293.0}) {
+            const double d = D(spherical_direction(radians(theta_deg), radians(phi_deg)));
+            if (std::abs(d - reference) > 1e-9 * std::max(std::abs(reference), 1e-300))
+                return false;
+        }
+    }
+    return true;
+}
+
 } // namespace gonio

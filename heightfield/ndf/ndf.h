@@ -74,6 +74,9 @@ class Ndf {
     double G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form) const;
     // The same with lambda_i = Lambda(i) given (a caller that holds i fixed computes it once).
     double G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form, double lambda_i) const;
+    // True when D is invariant under rotations about the normal, checked numerically (D at seven
+    // polar angles and six azimuths agrees to 1e-9).
+    bool isotropic() const;
     // pdf of sample_m: D(m) m.z.
     double pdf_m(const Vec3& m) const;
     // pdf of sample_visible: G1(v, m) <v.m> D(m) / v.z.
