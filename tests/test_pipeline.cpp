@@ -7,6 +7,8 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+
 using namespace gonio;
 using namespace gonio::test;
 
@@ -82,7 +84,9 @@ TEST_CASE("gonio run stores every phase's time, and the phases add up to the wal
     }
     CHECK(wall > 0);
     CHECK(sum <= wall * 1.0001);
-    CHECK(sum >= 0.9 * wall);
+    // What no phase holds is a fixed cost (creating the thread pool, opening the output): 10 % of
+    // this small run's wall time or 20 ms, whichever is more (a loaded machine stretches it).
+    CHECK(wall - sum <= std::max(0.1 * wall, 0.02));
     fs::remove_all(d);
 }
 
