@@ -6,9 +6,8 @@
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/ggx.h"
 
-#include <doctest/doctest.h>
-
 #include <cmath>
+#include <doctest/doctest.h>
 #include <memory>
 
 using namespace gonio;
@@ -27,8 +26,10 @@ TEST_CASE("energy compensations: perfect mirrors reflect everything (white furna
     for (double alpha : {0.2, 0.8, 1.5}) {
         for (bool ggx : {false, true}) {
             std::shared_ptr<const Ndf> ndf;
-            if (ggx) ndf = std::make_shared<Ggx>(alpha, alpha);
-            else ndf = std::make_shared<Beckmann>(alpha, alpha);
+            if (ggx)
+                ndf = std::make_shared<Ggx>(alpha, alpha);
+            else
+                ndf = std::make_shared<Beckmann>(alpha, alpha);
             const auto table = std::make_shared<const AlbedoTable>(
                 AlbedoTable::smith(*ndf, MaskingForm::height_correlated, q));
             for (Compensation kind : {Compensation::kulla_conty, Compensation::turquin}) {
@@ -96,6 +97,7 @@ TEST_CASE("Turquin: Model L1 scaled by 1 + F0 (1 - E) / E, per channel") {
     const double e = table->at(wi.z);
     for (size_t i = 0; i < m.energy.size(); ++i) {
         const double f0 = i % 2 == 0 ? 0.3 : 0.95;
-        CHECK(m.energy[i] == doctest::Approx(m.l1_energy[i] * (1 + f0 * (1 - e) / e)).epsilon(1e-12));
+        CHECK(m.energy[i] ==
+              doctest::Approx(m.l1_energy[i] * (1 + f0 * (1 - e) / e)).epsilon(1e-12));
     }
 }

@@ -5,9 +5,8 @@
 #include "gonio/io/hdf5_handles.h"
 #include "gonio/run/run.h"
 
-#include <doctest/doctest.h>
-
 #include <algorithm>
+#include <doctest/doctest.h>
 
 using namespace gonio;
 using namespace gonio::test;

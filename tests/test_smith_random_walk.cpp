@@ -11,10 +11,9 @@
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/ggx.h"
 
+#include <cmath>
 #include <doctest/doctest.h>
 #include <tbb/global_control.h>
-
-#include <cmath>
 
 using namespace gonio;
 
@@ -31,7 +30,9 @@ struct OrderAlbedos {
     double mean[3] = {0, 0, 0}, stderr_[3] = {0, 0, 0};
 };
 
-double gaussian_c1(double h) { return 0.5 * std::erfc(-h / std::sqrt(2.0)); }
+double gaussian_c1(double h) {
+    return 0.5 * std::erfc(-h / std::sqrt(2.0));
+}
 
 // The height h' with C1(h') = c, by bisection (C1 is increasing).
 double gaussian_height(double c) {
@@ -124,14 +125,15 @@ TEST_CASE("Smith random walk: orders 1, 2 and 3+ of Beckmann and GGX mirrors agr
                     CAPTURE(k + 1);
                     CAPTURE(r.ledger.reflected[size_t(k)]);
                     CAPTURE(x.mean[k]);
-                    const double sigma = std::hypot(r.ledger_stderr.reflected[size_t(k)],
-                                                    x.stderr_[k]);
+                    const double sigma =
+                        std::hypot(r.ledger_stderr.reflected[size_t(k)], x.stderr_[k]);
                     CAPTURE(sigma);
                     CHECK(std::abs(r.ledger.reflected[size_t(k)] - x.mean[k]) <= 4 * sigma + 1e-15);
                     ++compared;
                 }
                 // Order 1 is the microfacet BRDF with the height-correlated G2 [R19 Eq. 9].
-                const MicrofacetModel l1(*ndf, FresnelTerm::mirror(), MaskingForm::height_correlated);
+                const MicrofacetModel l1(*ndf, FresnelTerm::mirror(),
+                                         MaskingForm::height_correlated);
                 double e1 = 0;
                 for (double e : model_cell_energy(l1, wi, sensor, {})) e1 += e;
                 CHECK(std::abs(r.ledger.reflected[0] - e1) <=
@@ -158,7 +160,8 @@ TEST_CASE("Smith random walk: single scattering is Model L1 with the height-corr
             st.orders = 2;
             st.seed = 3;
             const TraceResult r = smith_random_walk(*ndf, mirror, sensor, wi, st);
-            const MicrofacetModel model(*ndf, FresnelTerm::mirror(), MaskingForm::height_correlated);
+            const MicrofacetModel model(*ndf, FresnelTerm::mirror(),
+                                        MaskingForm::height_correlated);
             std::vector<double> expected = model_cell_energy(model, wi, sensor, {});
             std::vector<double> observed(size_t(sensor.cell_count()));
             for (int c = 0; c < sensor.cell_count(); ++c) {
@@ -192,8 +195,8 @@ TEST_CASE("Smith random walk: lossless facets keep every path (L-infinity = 1), 
                 st.rays = 1 << 14;
                 st.orders = 2;
                 st.max_bounces = 100000;
-                const TraceResult r = smith_random_walk(
-                    ndf, *material, sensor, spherical_direction(radians(ti), 0.2), st);
+                const TraceResult r = smith_random_walk(ndf, *material, sensor,
+                                                        spherical_direction(radians(ti), 0.2), st);
                 double total = r.ledger.capped[0];
                 for (double e : r.ledger.reflected) total += e;
                 for (double e : r.ledger.transmitted) total += e;
@@ -246,7 +249,8 @@ TEST_CASE("visible normals from below the plane follow max(0, v.m) D(m) (chi-squ
         const Vec3 m = sample_visible_any(ndf, v, rng);
         double phi = std::atan2(m.y, m.x);
         if (phi < 0) phi += 2 * kPi;
-        const int i = std::min(nt - 1, int(m.z * nt)), j = std::min(np - 1, int(phi / (2 * kPi) * np));
+        const int i = std::min(nt - 1, int(m.z * nt)),
+                  j = std::min(np - 1, int(phi / (2 * kPi) * np));
         observed[size_t(i * np + j)] += 1;
     }
     const double area = projected_area(ndf, v);
@@ -256,7 +260,8 @@ TEST_CASE("visible normals from below the plane follow max(0, v.m) D(m) (chi-squ
             double s = 0;
             for (int a = 0; a < q; ++a)
                 for (int b = 0; b < q; ++b) {
-                    const double z = (i + (a + 0.5) / q) / nt, phi = 2 * kPi * (j + (b + 0.5) / q) / np;
+                    const double z = (i + (a + 0.5) / q) / nt,
+                                 phi = 2 * kPi * (j + (b + 0.5) / q) / np;
                     const double r = std::sqrt(1 - z * z);
                     const Vec3 m{r * std::cos(phi), r * std::sin(phi), z};
                     s += std::max(0.0, dot(v, m)) * ndf.D(m);

@@ -40,8 +40,8 @@ int fit(FitArgs& a) {
     const auto limit = limit_threads(a.threads);
     Progress progress(1, a.quiet);
     const FitResult r = fit_result_case(a.file, o, [&](int done, int total) {
-        progress.update(done * 1000LL / total, "fit " + std::to_string(done) + "/" +
-                                                   std::to_string(total));
+        progress.update(done * 1000LL / total,
+                        "fit " + std::to_string(done) + "/" + std::to_string(total));
     });
     progress.finish();
     if (!a.quiet) {
@@ -63,10 +63,12 @@ int fit(FitArgs& a) {
                     r.chi2_per_dof(), r.chi2, r.points, r.value.size(), r.converged, r.starts,
                     r.seconds);
         if (r.chi2_per_dof() > 1.5)
-            std::printf("chi2/dof > 1: the model does not describe the data to within their errors; "
-                        "the errors above are statistical: multiplied by sqrt(chi2/dof) = %.3g they include the "
-                        "misfit (%s)\n",
-                        std::sqrt(r.chi2_per_dof()), r.names[0].c_str());
+            std::printf(
+                "chi2/dof > 1: the model does not describe the data to within their errors; "
+                "the errors above are statistical: multiplied by sqrt(chi2/dof) = %.3g they "
+                "include the "
+                "misfit (%s)\n",
+                std::sqrt(r.chi2_per_dof()), r.names[0].c_str());
     }
     if (!a.output.empty()) {
         write_fit(r, a.output);
@@ -111,8 +113,9 @@ std::function<int()> setup(CLI::App& app, const CliContext&) {
     app.add_option("--walk-paths", o.walk_paths, "--with heitz16: paths per incidence (2^16)")
         ->check(CLI::Range(1024LL, 1LL << 30));
     app.add_option("--seed", o.seed, "Seed of the bootstrap and of heitz16's walks");
-    app.add_option("-o,--output", a->output, "Write the fit (FIT.toml, or FIT.json with the "
-                                             "residual map that `gonio report --fit` shows)");
+    app.add_option("-o,--output", a->output,
+                   "Write the fit (FIT.toml, or FIT.json with the "
+                   "residual map that `gonio report --fit` shows)");
     app.add_flag("--overwrite", a->overwrite, "Replace an existing output file");
     app.add_option("--threads", a->threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(0, 4096));

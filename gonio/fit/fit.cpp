@@ -5,7 +5,6 @@
 #include "gonio/fit/fit_problem.h"
 
 #include <ceres/ceres.h>
-
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -102,8 +101,8 @@ FitResult fit_result_case(const std::string& file, const FitOptions& options,
     const ResultCase c = read_result_case(file, options.case_name);
     const FitProblem problem(c, options);
     const std::vector<std::vector<double>> from = starts(problem);
-    const int replicas = problem.data_has_errors() && options.bootstrap > 0
-                             ? std::max(2, options.bootstrap) : 0;
+    const int replicas =
+        problem.data_has_errors() && options.bootstrap > 0 ? std::max(2, options.bootstrap) : 0;
     const int total = int(from.size()) + replicas;
     // Common random numbers make a random walk's albedo piecewise constant at a fine scale:
     // differences over 1 % of a parameter see its slope, not its steps.
@@ -146,9 +145,9 @@ FitResult fit_result_case(const std::string& file, const FitOptions& options,
     const double dof = double(r.points) - double(n);
     const double scale = options.loss == FitLoss::chi2 ? 1.0 : (dof > 0 ? r.loss / dof : 0.0);
     for (size_t k = 0; k < n; ++k)
-        r.stderr_covariance.push_back(best.covariance.empty()
-                                          ? std::numeric_limits<double>::quiet_NaN()
-                                          : std::sqrt(std::max(0.0, best.covariance[k * n + k] * scale)));
+        r.stderr_covariance.push_back(
+            best.covariance.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                    : std::sqrt(std::max(0.0, best.covariance[k * n + k] * scale)));
 
     // Parametric bootstrap: the data redrawn cell by cell from their own errors (the batches
     // behind the file's standard errors are not in it), refitted from the optimum.

@@ -32,7 +32,7 @@ enum class FitLoss { chi2, ngan, low_l2, low_log, bieron_l2, bieron_log };
 template <>
 struct EnumNames<FitLoss> {
     static constexpr const char* what = "loss";
-    static constexpr const char* names[] = {"chi2",   "ngan",      "low_l2",
+    static constexpr const char* names[] = {"chi2",    "ngan",      "low_l2",
                                             "low_log", "bieron_l2", "bieron_log"};
 };
 
@@ -58,16 +58,16 @@ struct EnumNames<FitFresnel> {
 };
 
 struct FitOptions {
-    std::string case_name;  // empty: the file's only case
-    std::string family;     // an NDF family with an `alpha` key (ggx, beckmann, student_t, ...)
+    std::string case_name;    // empty: the file's only case
+    std::string family;       // an NDF family with an `alpha` key (ggx, beckmann, student_t, ...)
     bool anisotropic = false; // alpha_x and alpha_y, not one alpha
     FitOrders orders = FitOrders::l1;
     FitWith with = FitWith::none;
     FitFresnel fresnel = FitFresnel::fixed; // fixed: the case's facets; fit: Schlick F0 per channel
     FitLoss loss = FitLoss::chi2;
-    double max_theta_deg = 90;  // incidences and cells beyond it are left out
-    std::string reference;      // a `gonio model` case: the model fitted to (default: the first)
-    int bootstrap = 16;         // replicas of the parametric bootstrap (0: none)
+    double max_theta_deg = 90; // incidences and cells beyond it are left out
+    std::string reference;     // a `gonio model` case: the model fitted to (default: the first)
+    int bootstrap = 16;        // replicas of the parametric bootstrap (0: none)
     long long walk_paths = 1 << 16; // heitz16: paths per incidence (common random numbers)
     std::uint64_t seed = 1;
 };
@@ -79,11 +79,11 @@ struct FitResult {
     std::vector<double> value, lower, upper;
     std::vector<double> stderr_covariance; // Ceres' covariance (scaled by chi2/dof unless chi2)
     std::vector<double> stderr_bootstrap;  // the bootstrap's (empty without one)
-    double chi2 = 0;           // sum of squared normalised residuals (d - m) / sigma
-    long long points = 0;      // cells x incidences x channels fitted
-    double loss = 0;           // the chosen loss at the optimum
+    double chi2 = 0;                       // sum of squared normalised residuals (d - m) / sigma
+    long long points = 0;                  // cells x incidences x channels fitted
+    double loss = 0;                       // the chosen loss at the optimum
     int starts = 0, converged = 0;
-    std::string ndf_toml;      // the fitted distribution as an [ndf] table
+    std::string ndf_toml; // the fitted distribution as an [ndf] table
     // (d - m) / sigma per [theta_i][phi_i][cell][channel] of the case (NaN where left out).
     std::vector<double> residual_map;
     std::vector<double> theta_i_deg, phi_i_deg;

@@ -2,14 +2,13 @@
 #include "gonio/export/atomic_output.h"
 #include "gonio/fit/fit.h"
 
-#include <nlohmann/json.hpp>
-#include <toml++/toml.h>
-
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <toml++/toml.h>
 
 namespace gonio {
 
@@ -34,7 +33,8 @@ std::vector<double> f0_of(const FitResult& r, const FacetSpec& facets) {
     for (size_t k = 0; k < r.names.size(); ++k)
         if (r.names[k].rfind("f0", 0) == 0) f0.push_back(r.value[k]);
     if (f0.empty() && facets.fresnel.kind() == FresnelTerm::Kind::schlick)
-        for (int c = 0; c < facets.fresnel.channels(); ++c) f0.push_back(facets.fresnel.schlick_f0(c));
+        for (int c = 0; c < facets.fresnel.channels(); ++c)
+            f0.push_back(facets.fresnel.schlick_f0(c));
     return f0;
 }
 
@@ -69,7 +69,8 @@ const char* kMultipleScattering =
 std::string mitsuba_xml(const FitResult& r, const ResultCase& c) {
     if (r.family != "ggx" && r.family != "beckmann")
         return "<!-- Mitsuba 3's rough BSDFs have the beckmann and ggx distributions only: no "
-               "equivalent of " + r.family + " -->\n";
+               "equivalent of " +
+               r.family + " -->\n";
     const FacetSpec& facets = c.config.material;
     const std::vector<double>& nm = c.wavelength_nm;
     std::string s;
@@ -87,7 +88,8 @@ std::string mitsuba_xml(const FitResult& r, const ResultCase& c) {
         s += "    <float name=\"int_ior\" value=\"" + num(facets.fresnel.dielectric_eta(0)) +
              "\"/>\n    <float name=\"ext_ior\" value=\"1\"/>\n";
     } else if (!f0.empty()) {
-        s += "    <!-- Schlick's F0 as a constant reflectance: roughconductor has no Schlick term -->\n"
+        s += "    <!-- Schlick's F0 as a constant reflectance: roughconductor has no Schlick term "
+             "-->\n"
              "    <string name=\"material\" value=\"none\"/>\n" +
              mitsuba_spectrum("specular_reflectance", f0, nm);
     } else if (facets.fresnel.kind() == FresnelTerm::Kind::mirror) {
@@ -108,7 +110,8 @@ std::string mitsuba_xml(const FitResult& r, const ResultCase& c) {
 std::string pbrt_material(const FitResult& r, const ResultCase& c) {
     if (r.family != "ggx")
         return "# pbrt-v4's rough materials use the Trowbridge-Reitz (GGX) distribution only: no "
-               "equivalent of " + r.family + "\n";
+               "equivalent of " +
+               r.family + "\n";
     const FacetSpec& facets = c.config.material;
     const std::vector<double>& nm = c.wavelength_nm;
     std::string rough = r.options.anisotropic
@@ -121,8 +124,8 @@ std::string pbrt_material(const FitResult& r, const ResultCase& c) {
     const std::vector<double> f0 = f0_of(r, facets);
     static const std::set<std::string> named{"Ag", "Al", "Au", "Cu", "CuZn", "MgO", "TiO2"};
     if (facets.transmits) {
-        s += "Material \"dielectric\" \"float eta\" " + num(facets.fresnel.dielectric_eta(0)) + " " +
-             rough;
+        s += "Material \"dielectric\" \"float eta\" " + num(facets.fresnel.dielectric_eta(0)) +
+             " " + rough;
     } else if (!f0.empty()) {
         s += "Material \"conductor\" " + pbrt_spectrum("reflectance", f0, nm) + " " + rough;
     } else if (facets.fresnel.kind() == FresnelTerm::Kind::mirror) {
@@ -146,7 +149,9 @@ std::string pbrt_material(const FitResult& r, const ResultCase& c) {
 void write_fit(const FitResult& r, const std::string& path) {
     const ResultCase c = read_result_case(r.file, r.case_name);
     const bool json = std::filesystem::path(path).extension() == ".json";
-    auto nan_free = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+    auto nan_free = [](double v) {
+        return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json();
+    };
     AtomicOutput out(path, true, false);
     if (json) {
         nlohmann::json j;
@@ -180,8 +185,11 @@ void write_fit(const FitResult& r, const std::string& path) {
         j["pbrt_v4"] = pbrt_material(r, c);
         nlohmann::json map = nlohmann::json::array();
         for (double v : r.residual_map) map.push_back(nan_free(v));
-        j["residuals"] = {{"theta_i", r.theta_i_deg}, {"phi_i", r.phi_i_deg}, {"cells", r.cells},
-                          {"channels", r.channels}, {"normalised", map}};
+        j["residuals"] = {{"theta_i", r.theta_i_deg},
+                          {"phi_i", r.phi_i_deg},
+                          {"cells", r.cells},
+                          {"channels", r.channels},
+                          {"normalised", map}};
         out.stream() << j.dump(1) << "\n";
     } else {
         toml::table fit{{"file", r.file},
@@ -209,7 +217,9 @@ void write_fit(const FitResult& r, const std::string& path) {
             if (!r.stderr_bootstrap.empty()) p.insert("stderr_bootstrap", r.stderr_bootstrap[k]);
             params.insert(r.names[k], p);
         }
-        toml::table root{{"fit", fit}, {"parameters", params}, {"ndf", toml::parse(r.ndf_toml)},
+        toml::table root{{"fit", fit},
+                         {"parameters", params},
+                         {"ndf", toml::parse(r.ndf_toml)},
                          {"renderers", toml::table{{"mitsuba3", mitsuba_xml(r, c)},
                                                    {"pbrt_v4", pbrt_material(r, c)}}}};
         out.stream() << "# gonio fit: " << r.family << " fitted to " << r.data << " of case "

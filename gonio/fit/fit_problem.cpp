@@ -31,8 +31,7 @@ CellQuadrature fit_quadrature(bool coarse) {
 }
 } // namespace
 
-FitProblem::FitProblem(const ResultCase& c, const FitOptions& o)
-    : c_(c), o_(o), sensor_(c.cells) {
+FitProblem::FitProblem(const ResultCase& c, const FitOptions& o) : c_(c), o_(o), sensor_(c.cells) {
     auto fail = [&](const std::string& why) {
         throw std::runtime_error(c.file + ", case " + c.name + ": " + why);
     };
@@ -65,7 +64,8 @@ FitProblem::FitProblem(const ResultCase& c, const FitOptions& o)
         if (k.name == "alpha") {
             const double lo = std::max(k.range.lo, 1e-3), hi = std::min(k.range.hi, 3.0);
             if (o.anisotropic)
-                params_.push_back({"alpha_x", lo, hi, 0.3}), params_.push_back({"alpha_y", lo, hi, 0.3});
+                params_.push_back({"alpha_x", lo, hi, 0.3}),
+                    params_.push_back({"alpha_y", lo, hi, 0.3});
             else
                 params_.push_back({"alpha", lo, hi, 0.3});
         } else if (k.name == "alpha_x" || k.name == "alpha_y") {
@@ -101,12 +101,16 @@ FitProblem::FitProblem(const ResultCase& c, const FitOptions& o)
     if (c.simulated) {
         dataset_ = o.orders == FitOrders::l1 ? "brdf_l1" : "brdf_linf";
         error_set = dataset_ + "_stderr";
-        if (!o.reference.empty()) fail("--reference is for `gonio model` files; this case is traced");
+        if (!o.reference.empty())
+            fail("--reference is for `gonio model` files; this case is traced");
     } else {
         std::string name = o.reference;
         if (name.empty())
             for (const char* m : {"l1", "heitz16", "vcavity"})
-                if (c.has(std::string("model_") + m)) { name = m; break; }
+                if (c.has(std::string("model_") + m)) {
+                    name = m;
+                    break;
+                }
         if (name.empty() || !c.has("model_" + name))
             fail("no simulation and no model to fit to (--reference NAME picks model_NAME)");
         dataset_ = "model_" + name;
@@ -143,12 +147,20 @@ FitProblem::FitProblem(const ResultCase& c, const FitOptions& o)
                     const double st = std::sin(s.theta_center), ct = std::cos(s.theta_center);
                     double w = 1;
                     switch (o.loss) {
-                    case FitLoss::chi2: w = 1; break;
-                    case FitLoss::ngan: w = std::sin(ti); break;
+                    case FitLoss::chi2:
+                        w = 1;
+                        break;
+                    case FitLoss::ngan:
+                        w = std::sin(ti);
+                        break;
                     case FitLoss::low_l2:
-                    case FitLoss::low_log: w = std::sin(ti) / std::max(st, 1e-3); break;
+                    case FitLoss::low_log:
+                        w = std::sin(ti) / std::max(st, 1e-3);
+                        break;
                     case FitLoss::bieron_l2:
-                    case FitLoss::bieron_log: w = std::sin(ti) * ct; break;
+                    case FitLoss::bieron_log:
+                        w = std::sin(ti) * ct;
+                        break;
                     }
                     weight_.push_back(std::sqrt(w));
                     cos_i_.push_back(std::cos(ti));
@@ -160,13 +172,13 @@ FitProblem::FitProblem(const ResultCase& c, const FitOptions& o)
     if (std::all_of(weight_.begin(), weight_.end(), [](double w) { return w == 0; }))
         fail("the loss " + std::string(name_of(o.loss)) +
              " weights an incidence by sin(theta_i): it has nothing to fit at normal incidence");
-    if (index_.size() <= params_.size())
-        fail("fewer data than parameters");
+    if (index_.size() <= params_.size()) fail("fewer data than parameters");
 }
 
 std::vector<double> FitProblem::clamped(const double* p) const {
     std::vector<double> v(params_.size());
-    for (size_t k = 0; k < v.size(); ++k) v[k] = std::clamp(p[k], params_[k].lower, params_[k].upper);
+    for (size_t k = 0; k < v.size(); ++k)
+        v[k] = std::clamp(p[k], params_[k].lower, params_[k].upper);
     return v;
 }
 
@@ -195,8 +207,7 @@ std::vector<double> FitProblem::predict(const double* p, bool coarse) const {
     std::vector<double> maps(incidences_.size() * cells * nc);
     for (size_t k = 0; k < incidences_.size(); ++k) {
         const size_t t = incidences_[k] / np, ph = incidences_[k] % np;
-        const Vec3 wi =
-            spherical_direction(radians(c_.theta_i_deg[t]), radians(c_.phi_i_deg[ph]));
+        const Vec3 wi = spherical_direction(radians(c_.theta_i_deg[t]), radians(c_.phi_i_deg[ph]));
         std::vector<double> energy;
         switch (o_.with) {
         case FitWith::none:
@@ -219,7 +230,8 @@ std::vector<double> FitProblem::predict(const double* p, bool coarse) const {
             st.stream = k;
             std::vector<TraceResult> parts;
             if (first_f0_ >= 0) {
-                parts.push_back(smith_random_walk(*ndf, SpecularReflector(fresnel), sensor_, wi, st));
+                parts.push_back(
+                    smith_random_walk(*ndf, SpecularReflector(fresnel), sensor_, wi, st));
             } else {
                 std::vector<std::unique_ptr<Material>> materials = c_.config.material.parts();
                 for (size_t m = 0; m < materials.size(); ++m) {
@@ -231,7 +243,8 @@ std::vector<double> FitProblem::predict(const double* p, bool coarse) const {
             const TraceResult r = concatenate_channels(parts);
             energy.assign(cells * nc, 0.0);
             for (int order = 0; order < r.orders; ++order)
-                for (size_t i = 0; i < cells * nc; ++i) energy[i] += r.energy[order * cells * nc + i];
+                for (size_t i = 0; i < cells * nc; ++i)
+                    energy[i] += r.energy[order * cells * nc + i];
             break;
         }
         }
@@ -253,10 +266,14 @@ void FitProblem::residuals(const std::vector<double>& m, const std::vector<doubl
                            double* out) const {
     for (size_t k = 0; k < m.size(); ++k) {
         switch (o_.loss) {
-        case FitLoss::chi2: out[k] = (d[k] - m[k]) / sigma_[k]; break;
+        case FitLoss::chi2:
+            out[k] = (d[k] - m[k]) / sigma_[k];
+            break;
         case FitLoss::ngan:
         case FitLoss::low_l2:
-        case FitLoss::bieron_l2: out[k] = weight_[k] * (m[k] - d[k]) * cos_i_[k]; break;
+        case FitLoss::bieron_l2:
+            out[k] = weight_[k] * (m[k] - d[k]) * cos_i_[k];
+            break;
         case FitLoss::low_log:
         case FitLoss::bieron_log:
             out[k] = weight_[k] *

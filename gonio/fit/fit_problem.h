@@ -56,7 +56,7 @@ class FitProblem {
     int first_f0_ = -1;                   // index of the first F0 parameter, or -1
     std::vector<size_t> incidences_;      // theta_i-major indices of the included incidences
     std::vector<double> data_, sigma_, weight_, cos_i_;
-    std::vector<size_t> index_;           // per residual: its place in the case's maps
+    std::vector<size_t> index_; // per residual: its place in the case's maps
     size_t map_size_ = 0;
     std::string dataset_;
     bool has_errors_ = false;

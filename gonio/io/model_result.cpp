@@ -60,7 +60,8 @@ void ModelResult::put(size_t t, size_t p, const ModelIncidence& m,
             l2plus_stderr.put({t, p}, brdf_of(batch_stderr(batches, m.batches)));
         }
         // A Monte Carlo model's albedos are its ledger's; an analytic one's its cells' sums.
-        l1_albedo.put({t, p}, m.monte_carlo() ? m.l1_albedo : albedo_from_cells(m.l1_energy, int(nc)));
+        l1_albedo.put({t, p},
+                      m.monte_carlo() ? m.l1_albedo : albedo_from_cells(m.l1_energy, int(nc)));
         l2plus_albedo.put({t, p},
                           m.monte_carlo() ? m.l2plus_albedo : albedo_from_cells(rest, int(nc)));
     }

@@ -126,9 +126,9 @@ void check_values(const std::string& name, const std::vector<double>& v) {
 
 // The 1-D datasets of a case: its axes and the sensor cells' coordinates.
 bool is_coordinate(const std::string& name) {
-    for (const char* c : {"theta_i", "phi_i", "cell", "channel", "order", "model_order", "wavelength",
-                          "theta_center", "phi_center", "theta_min", "theta_max", "phi_min",
-                          "phi_max", "solid_angle", "projected_solid_angle"})
+    for (const char* c : {"theta_i", "phi_i", "cell", "channel", "order", "model_order",
+                          "wavelength", "theta_center", "phi_center", "theta_min", "theta_max",
+                          "phi_min", "phi_max", "solid_angle", "projected_solid_angle"})
         if (name == c) return true;
     return false;
 }

@@ -186,7 +186,8 @@ void SimulationResult::put(size_t t, size_t p, const TraceResult& r,
     for (size_t m = 0; m < models.size(); ++m) {
         GONIO_CHECK(models[m].l2plus.size() == comparisons[m].l2plus.size());
         put_comparison(comparisons[m], models[m]);
-        if (!models[m].l2plus.empty()) put_comparison(comparisons[m].l2plus[0], models[m].l2plus[0]);
+        if (!models[m].l2plus.empty())
+            put_comparison(comparisons[m].l2plus[0], models[m].l2plus[0]);
     }
     filled_[index(t, p)] = true;
     ++done_;

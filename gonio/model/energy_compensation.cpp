@@ -22,8 +22,12 @@ constexpr int kAzimuths = 4; // an anisotropic E is averaged over 0, 45, 90 and 
 // where E varies evenly; the last is evaluated just above the horizon (E's grazing limit). A
 // table that stopped short of it would put a kink in the integrand, which the cells' quadrature
 // near the horizon would not see.
-double node_step() { return 0.5 * kPi / (AlbedoTable::kNodes - 1); }
-double node_mu(int k) { return std::cos(std::min(k * node_step(), radians(89.95))); }
+double node_step() {
+    return 0.5 * kPi / (AlbedoTable::kNodes - 1);
+}
+double node_mu(int k) {
+    return std::cos(std::min(k * node_step(), radians(89.95)));
+}
 
 } // namespace
 
@@ -71,7 +75,8 @@ AlbedoTable AlbedoTable::smith(const Ndf& ndf, MaskingForm masking, const CellQu
     });
     std::vector<double> mean(kNodes, 0.0);
     for (int k = 0; k < kNodes; ++k)
-        for (int a = 0; a < azimuths; ++a) mean[size_t(k)] += e[size_t(k * azimuths + a)] / azimuths;
+        for (int a = 0; a < azimuths; ++a)
+            mean[size_t(k)] += e[size_t(k * azimuths + a)] / azimuths;
     return of_nodes(mean);
 }
 
@@ -90,8 +95,8 @@ AlbedoTable AlbedoTable::surface(const HeightField& surface, const TraceBackendK
             st.stream = std::uint64_t(k * kAzimuths + a);
             st.backend = &backend;
             const Vec3 wi = spherical_direction(std::acos(node_mu(k)), kPi * a / kAzimuths);
-            e[size_t(k)] += trace_incidence(scene, mirror, sensor, wi, st).ledger.reflected[0] /
-                            kAzimuths;
+            e[size_t(k)] +=
+                trace_incidence(scene, mirror, sensor, wi, st).ledger.reflected[0] / kAzimuths;
         }
     return of_nodes(e);
 }
@@ -103,7 +108,8 @@ std::vector<double> average_fresnel(const FresnelTerm& fresnel) {
     for (size_t j = 0; j < g.nodes.size(); ++j) {
         const double mu = 0.5 * (g.nodes[j] + 1); // [-1, 1] -> [0, 1]
         fresnel.eval(mu, f.data());
-        for (int c = 0; c < nc; ++c) avg[size_t(c)] += g.weights[j] * f[size_t(c)] * mu; // dmu = dx / 2
+        for (int c = 0; c < nc; ++c)
+            avg[size_t(c)] += g.weights[j] * f[size_t(c)] * mu; // dmu = dx / 2
     }
     return avg;
 }
@@ -119,9 +125,8 @@ class KullaContyLobe final : public BrdfModel {
     void eval_cosine(const Vec3& i, const Vec3& o, double* out) const override {
         // (1 - E(mu_i)) (1 - E(mu_o)) / (pi (1 - E_avg)) [Kulla & Conty 2017], times cos theta_o.
         const bool above = i.z > 0 && o.z > 0 && e_->average < 1;
-        const double lobe = above ? (1 - e_->at(i.z)) * (1 - e_->at(o.z)) * o.z /
-                                        (kPi * (1 - e_->average))
-                                  : 0.0;
+        const double lobe =
+            above ? (1 - e_->at(i.z)) * (1 - e_->at(o.z)) * o.z / (kPi * (1 - e_->average)) : 0.0;
         for (size_t c = 0; c < scale_.size(); ++c) out[c] = lobe * scale_[c];
     }
     double narrowest_feature() const override { return INFINITY; }
@@ -162,7 +167,8 @@ class CompensatedModel final : public CellModel {
         const size_t nc = size_t(l1_.channels());
         if (lobe_) {
             double reached = 0;
-            const std::vector<double> ms = model_cell_energy(*lobe_, wi, sensor, quadrature_, &reached);
+            const std::vector<double> ms =
+                model_cell_energy(*lobe_, wi, sensor, quadrature_, &reached);
             for (size_t i = 0; i < ms.size(); ++i) m.energy[i] += ms[i];
             m.relative_tolerance = std::max(m.relative_tolerance, reached);
         } else {
@@ -266,17 +272,17 @@ ModelChoice read_compensation(TableReader& r, const ModelContext& c, Compensatio
     const long long rays = r.integer(keys.rays);
     m.needs_surface = source == AlbedoSource::surface;
     m.description = "Model L1 + " + what + ", E(mu) from " +
-                    (source == AlbedoSource::smith ? "Smith's model of the NDF"
-                                                   : "the explicit surface (" +
-                                                         std::to_string(rays) + " rays a node)");
+                    (source == AlbedoSource::smith
+                         ? "Smith's model of the NDF"
+                         : "the explicit surface (" + std::to_string(rays) + " rays a node)");
     m.build = [=, ndf = c.ndf, fresnel = c.facets.fresnel, masking = c.masking,
                quadrature = c.quadrature,
                backend = c.backend](const HeightField* surface) -> std::unique_ptr<CellModel> {
-        return compensated_model(
-            kind, ndf, fresnel, masking, quadrature,
-            source == AlbedoSource::smith
-                ? smith_table(ndf, masking, quadrature)
-                : std::make_shared<const AlbedoTable>(AlbedoTable::surface(*surface, *backend, rays)));
+        return compensated_model(kind, ndf, fresnel, masking, quadrature,
+                                 source == AlbedoSource::smith
+                                     ? smith_table(ndf, masking, quadrature)
+                                     : std::make_shared<const AlbedoTable>(
+                                           AlbedoTable::surface(*surface, *backend, rays)));
     };
     return m;
 }
@@ -297,14 +303,14 @@ const ModelKind& kulla_conty_model_kind() {
 
 const ModelKind& turquin_model_kind() {
     static const CompensationKeys keys = keys_of("turquin");
-    static const ModelKind k{
-        "turquin",
-        "Model L1 scaled by 1 + F0 (1 - E) / E, every order [Turquin 2019]",
-        {keys.albedo, keys.rays},
-        [](TableReader& r, const ModelContext& c) {
-            return read_compensation(r, c, Compensation::turquin, "turquin", keys,
+    static const ModelKind k{"turquin",
+                             "Model L1 scaled by 1 + F0 (1 - E) / E, every order [Turquin 2019]",
+                             {keys.albedo, keys.rays},
+                             [](TableReader& r, const ModelContext& c) {
+                                 return read_compensation(
+                                     r, c, Compensation::turquin, "turquin", keys,
                                      "Turquin's scaling 1 + F0 (1 - E) / E [Turquin 2019]");
-        }};
+                             }};
     return k;
 }
 

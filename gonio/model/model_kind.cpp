@@ -33,10 +33,10 @@ const Key& models_key() {
 
 const std::vector<const ModelKind*>& model_kinds() {
     static const std::vector<const ModelKind*> kinds = {
-        &l1_model_kind(), &il_model_kind(), &vcavity_model_kind(), &heitz16_model_kind(),
-        &kulla_conty_model_kind(), &turquin_model_kind(), &ashikhmin_model_kind(),
-        &pbrdf_model_kind(), &smith_measured_ndf_model_kind(), &measured_g1_model_kind(),
-        &measured_model_kind()};
+        &l1_model_kind(),          &il_model_kind(),          &vcavity_model_kind(),
+        &heitz16_model_kind(),     &kulla_conty_model_kind(), &turquin_model_kind(),
+        &ashikhmin_model_kind(),   &pbrdf_model_kind(),       &smith_measured_ndf_model_kind(),
+        &measured_g1_model_kind(), &measured_model_kind()};
     return kinds;
 }
 

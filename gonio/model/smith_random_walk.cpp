@@ -48,9 +48,8 @@ Vec3 sample_visible_any(const Ndf& ndf, const Vec3& v, Rng& rng) {
     return m;
 }
 
-TraceResult smith_random_walk(const Ndf& ndf, const Material& material,
-                              const BeckersSensor& sensor, const Vec3& wi,
-                              const TraceSettings& st) {
+TraceResult smith_random_walk(const Ndf& ndf, const Material& material, const BeckersSensor& sensor,
+                              const Vec3& wi, const TraceSettings& st) {
     const int nc = material.channels(), cells = sensor.cell_count(), orders = st.orders + 1;
     const bool transmits = material.transmits();
     const long long B = std::max(1, st.batches);
@@ -61,8 +60,8 @@ TraceResult smith_random_walk(const Ndf& ndf, const Material& material,
         Rng rng{st.seed, st.stream, 0x534d49544857414cull /* "SMITHWAL" */, std::uint64_t(id)};
         std::vector<double> w(nc), before(nc);
         for (long long p = first; p < last; ++p) {
-            Vec3 d = -wi;       // where the path goes
-            double u = 1;       // C1 of its height: it starts above every facet
+            Vec3 d = -wi;        // where the path goes
+            double u = 1;        // C1 of its height: it starts above every facet
             bool outside = true; // above the surface (a dielectric's inside is below it)
             std::fill(w.begin(), w.end(), 1.0);
             int bounces = 0;

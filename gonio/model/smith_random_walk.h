@@ -26,8 +26,7 @@ Vec3 sample_visible_any(const Ndf& ndf, const Vec3& v, Rng& rng);
 // settings.rays paths binned by order (settings.orders + 1 bins) on the upper sensor and, for a
 // transmissive material, on the lower one; batches and blocks as the simulator's
 // (gonio/trace/batched_run.h): the result does not depend on the thread count.
-TraceResult smith_random_walk(const Ndf& ndf, const Material& material,
-                              const BeckersSensor& sensor, const Vec3& wi,
-                              const TraceSettings& settings);
+TraceResult smith_random_walk(const Ndf& ndf, const Material& material, const BeckersSensor& sensor,
+                              const Vec3& wi, const TraceSettings& settings);
 
 } // namespace gonio

@@ -254,8 +254,8 @@ nlohmann::json report_data(const ReportSource& source) {
             throw std::runtime_error(path + ": a fit of case '" + name + "', which " +
                                      source.result + " does not hold");
         const json& r = f["residuals"];
-        const size_t expected = it->theta_i_deg.size() * it->phi_i_deg.size() *
-                                size_t(it->cells) * size_t(it->channels);
+        const size_t expected = it->theta_i_deg.size() * it->phi_i_deg.size() * size_t(it->cells) *
+                                size_t(it->channels);
         if (!r["normalised"].is_array() || r["normalised"].size() != expected)
             throw std::runtime_error(path + ": its residual map does not fit case " + name);
         std::vector<double> z;

@@ -34,8 +34,10 @@ double Ndf::G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form,
 double smith_g2(double li, double lo, const Vec3& i, const Vec3& o, MaskingForm form) {
     if (std::isinf(li) || std::isinf(lo)) return 0.0;
     switch (form) {
-    case MaskingForm::height_correlated: return 1.0 / (1.0 + li + lo); // R19 Eq. 9
-    case MaskingForm::uncorrelated: return 1.0 / ((1.0 + li) * (1.0 + lo)); // R19 Eq. 3
+    case MaskingForm::height_correlated:
+        return 1.0 / (1.0 + li + lo); // R19 Eq. 9
+    case MaskingForm::uncorrelated:
+        return 1.0 / ((1.0 + li) * (1.0 + lo)); // R19 Eq. 3
     case MaskingForm::height_direction_correlated: {
         // Heitz 2014 Eq. 101: phi in [0, pi] between the projections of i and o (a direction along
         // the normal has Lambda 0, so its azimuth does not matter).
@@ -46,7 +48,8 @@ double smith_g2(double li, double lo, const Vec3& i, const Vec3& o, MaskingForm 
         const double l = 4.41 * phi / (4.41 * phi + 1.0); // van Ginneken et al. 1998
         return 1.0 / (1.0 + std::max(li, lo) + l * std::min(li, lo));
     }
-    case MaskingForm::v_cavity: break;
+    case MaskingForm::v_cavity:
+        break;
     }
     GONIO_CHECK_MSG(false, "smith_g2: the V-cavity form is not a Smith form");
     return 0.0;

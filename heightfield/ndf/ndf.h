@@ -2,8 +2,9 @@
 // The microfacet normal distribution interface. Every distribution of gonio implements it, so the
 // surface generator, the analytic models and the simulator can use any of them.
 //
-// Conventions (docs/architecture.md): n = +z; D is normalised so that  integral D(m) (m.n) dw_m = 1  [R19 Eq. 2
-// text]; Smith's masking G1(v) = 1 / (1 + Lambda(v)) [R19 Eq. 8]; directions are unit vectors.
+// Conventions (docs/architecture.md): n = +z; D is normalised so that  integral D(m) (m.n) dw_m = 1
+// [R19 Eq. 2 text]; Smith's masking G1(v) = 1 / (1 + Lambda(v)) [R19 Eq. 8]; directions are unit
+// vectors.
 #include "core/enum_names.h"
 #include "core/math.h"
 
