@@ -6,7 +6,8 @@
 // height-field traversal: the same random streams, so the same beam rays. Beam rays per second,
 // segments per second (a segment: one straight piece of a ray between bounces and walls), the
 // memory of each acceleration structure, and the speed-up (best of `repeats` runs each,
-// alternating). The last line is the 1024^2, theta_i 60 deg, 2-thread speed-up.
+// alternating). The last two lines: the 1024^2, 2-thread speed-up at theta_i 89.9 deg and at
+// 60 deg (the sizes and angles run, when --size or --theta picks others).
 //
 // hits: hit for hit. The segments the Embree pipeline gives Embree (every bounce and wrap,
 // recorded) replayed through both backends; each segment's first hit compared (same triangle,
@@ -22,11 +23,13 @@
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/ggx.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <string>
 #include <tbb/blocked_range.h>
@@ -100,8 +103,8 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
                 (long long)rays, repeats);
     std::printf("%6s %6s %7s | %12s %9s | %12s %9s | %7s\n", "size", "theta", "threads",
                 "embree ray/s", "Mseg/s", "hfield ray/s", "Mseg/s", "speedup");
-    double headline = 0;
-    int headline_size = 0;
+    // Speed-ups at 2 threads by (size, theta), for the summary lines.
+    std::map<std::pair<int, double>, double> two_threads;
     std::vector<std::string> memory;
     for (int n : sizes) {
         const HeightField surface = surface_of(Beckmann(0.75), n);
@@ -140,8 +143,7 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
                             threads, e.rays_per_s, e.segments_per_s / 1e6, h.rays_per_s,
                             h.segments_per_s / 1e6, speedup);
                 std::fflush(stdout);
-                if (threads == 2 && theta == 60 && (n == 1024 || (quick && n == sizes[0])))
-                    headline = speedup, headline_size = n;
+                if (threads == 2) two_threads[{n, theta}] = speedup;
             }
         }
     }
@@ -150,9 +152,18 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
     std::printf("%6s %14s %10s %14s %10s %8s %10s\n", "size", "embree MiB", "build s", "hfield MiB",
                 "build s", "ratio", "relief");
     for (const std::string& l : memory) std::printf("%s\n", l.c_str());
-    std::printf(
-        "speedup heightfield/embree (%d\u00b2, \u03b1 0.75, \u03b8i 60\u00b0, 2 threads): %.2f\n",
-        headline_size, headline);
+    // The summary lines at 1024^2 (or the one size run), the last one at theta_i 60 deg (or the
+    // first angle run): the grazing line only where 89.9 deg was run.
+    const int at = std::find(sizes.begin(), sizes.end(), 1024) != sizes.end() ? 1024 : sizes[0];
+    const double headline_theta =
+        std::find(thetas.begin(), thetas.end(), 60.0) != thetas.end() ? 60.0 : thetas[0];
+    if (headline_theta != 89.9 && two_threads.count({at, 89.9}))
+        std::printf("speedup heightfield/embree at grazing incidence (%d\u00b2, \u03b1 0.75, "
+                    "\u03b8i 89.9\u00b0, 2 threads): %.2f\n",
+                    at, two_threads[{at, 89.9}]);
+    std::printf("speedup heightfield/embree (%d\u00b2, \u03b1 0.75, \u03b8i %g\u00b0, 2 threads): "
+                "%.2f\n",
+                at, headline_theta, two_threads[{at, headline_theta}]);
     return 0;
 }
 

@@ -1,9 +1,13 @@
 #include "heightfield/generate.h"
 
+#include "core/check.h"
+#include "core/math.h"
 #include "core/parallel.h"
+#include "core/quadrature.h"
 #include "core/random.h"
 #include "heightfield/constraint_geometry.h"
 #include "heightfield/frankot_chellappa.h"
+#include "heightfield/slope_marginal.h"
 #include "heightfield/surface_generator.h"
 #include "heightfield/surface_metrics.h"
 
@@ -150,19 +154,20 @@ struct SlicedWork {
     std::vector<std::uint32_t> in_bin;
     std::vector<std::vector<std::uint32_t>> part;
     std::vector<float> map;
-    float lo = 0, hi = 0; // histogram range for the next step
+    float lo = 0, hi = 0;   // histogram range for the next step
+    float lo2 = 0, hi2 = 0; // and for its second direction (pairs)
 };
 
-// The target's quantile function in the stretched frame: a table of 2^17 + 1 quantiles that stays
-// in cache (linear interpolation), and the whole sorted marginal for the two outermost intervals,
-// where heavy tails (GGX) need every sample.
-class Quantiles {
+// The marginal of the sample pool: a table of 2^17 + 1 quantiles that stays in cache (linear
+// interpolation), and the whole sorted marginal for the two outermost intervals, where heavy tails
+// (GGX) need every sample.
+class Quantiles final : public MarginalQuantile {
   public:
     explicit Quantiles(std::vector<float> sorted) : all_(std::move(sorted)) {
         table_.resize(kSize + 1);
         for (int i = 0; i <= kSize; ++i) table_[i] = at_full(double(i) / kSize);
     }
-    float operator()(double u) const {
+    float operator()(double u) const override {
         const double t = u * kSize;
         const int i = int(t);
         if (i < 1 || i >= kSize - 1) return at_full(u);
@@ -176,6 +181,39 @@ class Quantiles {
         return all_[std::min(all_.size() - 1, size_t(std::max(0.0, u) * double(all_.size())))];
     }
     std::vector<float> all_, table_;
+};
+
+// The same from sorted values that need not be kept: the table, and the values of the two
+// outermost intervals only (for the pool's marginals along fixed directions, 64 of them).
+class CompactQuantiles final : public MarginalQuantile {
+  public:
+    explicit CompactQuantiles(const std::vector<float>& sorted) : count_(sorted.size()) {
+        table_.resize(kSize + 1);
+        for (int i = 0; i <= kSize; ++i) table_[i] = at(sorted, double(i) / kSize);
+        const size_t outer = std::min(count_, count_ / kSize + 2);
+        low_.assign(sorted.begin(), sorted.begin() + long(outer));
+        high_.assign(sorted.end() - long(outer), sorted.end());
+    }
+    float operator()(double u) const override {
+        const double t = u * kSize;
+        const int i = int(t);
+        if (i < 1 || i >= kSize - 1) { // as Quantiles: every sample there
+            const size_t k = std::min(count_ - 1, size_t(std::max(0.0, u) * double(count_)));
+            if (k < low_.size()) return low_[k];
+            return high_[std::min(high_.size() - 1, k - (count_ - high_.size()))];
+        }
+        const float f = float(t - i);
+        return table_[i] + f * (table_[i + 1] - table_[i]);
+    }
+
+  private:
+    static constexpr int kSize = 1 << 17;
+    static float at(const std::vector<float>& sorted, double u) {
+        return sorted[std::min(sorted.size() - 1,
+                               size_t(std::max(0.0, u) * double(sorted.size())))];
+    }
+    size_t count_;
+    std::vector<float> table_, low_, high_;
 };
 
 // One row of the sliced step's move: the gradient (forward differences of h) moves along e to the
@@ -198,8 +236,46 @@ move_row(const float* __restrict row, const float* __restrict next, int n, float
     move(n - 1, row[0] - row[n - 1], next[n - 1] - row[n - 1]); // wraps
 }
 
-void sliced_step(const float* h, int n, double ax, double ay, double psi, const Quantiles& quantile,
-                 SlicedWork& w, float* p, float* q) {
+// The transport map at the bin edges: the target quantile of each edge's rank. Inside a bin values
+// are taken as evenly spread, so the map is linear there.
+void transport_map(const std::vector<std::vector<std::uint32_t>>& part, size_t cells,
+                   const MarginalQuantile& quantile, std::vector<std::uint32_t>& in_bin,
+                   std::vector<float>& map) {
+    const size_t bins = part[0].size();
+    in_bin.assign(bins, 0);
+    for (const std::vector<std::uint32_t>& h : part)
+        for (size_t b = 0; b < bins; ++b) in_bin[b] += h[b];
+    map.resize(bins + 1);
+    std::uint64_t below = 0;
+    const double inv_cells = 1.0 / double(cells);
+    for (size_t b = 0; b <= bins; ++b) {
+        map[b] = quantile(double(below) * inv_cells);
+        if (b < bins) below += in_bin[b];
+    }
+}
+
+// The move along a second direction e2, in place: (p, q) moves along e2 to its projection's
+// image under the second map (the first direction's projection does not change: e2 is orthogonal
+// to it in the stretched frame).
+__attribute__((target_clones("avx2", "default"))) void
+move_in_place(float* __restrict p, float* __restrict q, size_t count, float ex, float ey, float lo,
+              float inv_width, int bins, const float* __restrict map, float dx, float dy) {
+    for (size_t k = 0; k < count; ++k) {
+        const float v = p[k] * ex + q[k] * ey;
+        const float t = (v - lo) * inv_width;
+        const int b = std::min(bins - 1, int(t));
+        const float frac = std::min(1.0f, t - float(b));
+        const float d = map[b] + frac * (map[b + 1] - map[b]) - v;
+        p[k] += dx * d;
+        q[k] += dy * d;
+    }
+}
+
+// One sliced step towards the target along psi, and with a `second` quantile function along
+// psi + pi/2 as well (in the stretched frame: both marginals matched before the next integration).
+void sliced_step(const float* h, int n, double ax, double ay, double psi,
+                 const MarginalQuantile& quantile, const MarginalQuantile* second, SlicedWork& w,
+                 float* p, float* q) {
     const size_t cells = size_t(n) * n;
     const float ex = float(std::cos(psi) / ax), ey = float(std::sin(psi) / ay);
     const int bins = 1 << 12, chunks = 4;
@@ -238,24 +314,57 @@ void sliced_step(const float* h, int n, double ax, double ay, double psi, const 
     }
     const float margin = 0.05f * (actual_hi - actual_lo);
     w.lo = actual_lo - margin, w.hi = actual_hi + margin;
-    // The transport map at the bin edges: the target quantile of each edge's rank. Inside a bin
-    // values are taken as evenly spread, so the map is linear there.
-    w.in_bin.assign(bins, 0);
-    for (int c = 0; c < chunks; ++c)
-        for (int b = 0; b < bins; ++b) w.in_bin[b] += w.part[c][b];
-    w.map.resize(bins + 1);
-    std::uint64_t below = 0;
-    const double inv_cells = 1.0 / double(cells);
-    for (int b = 0; b <= bins; ++b) {
-        w.map[b] = quantile(double(below) * inv_cells);
-        if (b < bins) below += w.in_bin[b];
-    }
+    transport_map(w.part, cells, quantile, w.in_bin, w.map);
     // Pass 2: each gradient moves along e to its projection's image under the map.
     const float dx = float(std::cos(psi) * ax), dy = float(std::sin(psi) * ay);
-    parallel_for_ranges<int>(0, n, 1, [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y)
+    if (!second) {
+        parallel_for_ranges<int>(0, n, 1, [&](const tbb::blocked_range<int>& rows) {
+            for (int y = rows.begin(); y < rows.end(); ++y)
+                move_row(&h[size_t(y) * n], &h[size_t((y + 1) % n) * n], n, ex, ey, lo, inv_width,
+                         bins, w.map.data(), dx, dy, &p[size_t(y) * n], &q[size_t(y) * n]);
+        });
+        return;
+    }
+    // With a pair, pass 2 also bins the moved gradients' projections on e2 (the rows just
+    // written, in cache), over the previous pair's range; a third pass moves them along e2.
+    const double psi2 = psi + kPi / 2;
+    const float ex2 = float(std::cos(psi2) / ax), ey2 = float(std::sin(psi2) / ay);
+    float lo2 = w.lo2, hi2 = w.hi2;
+    float inv_width2 = float(bins) / std::max(hi2 - lo2, 1e-30f);
+    auto bin_rows = [&](int c) {
+        auto& hist = w.part[c];
+        hist.assign(bins, 0);
+        float blo = std::numeric_limits<float>::max(), bhi = -blo;
+        for (size_t k = size_t(n) * size_t(n * c / chunks);
+             k < size_t(n) * size_t(n * (c + 1) / chunks); ++k) {
+            const float v = p[k] * ex2 + q[k] * ey2;
+            blo = std::min(blo, v), bhi = std::max(bhi, v);
+            ++hist[std::clamp(int((v - lo2) * inv_width2), 0, bins - 1)];
+        }
+        block_lo[c] = blo, block_hi[c] = bhi;
+    };
+    parallel_for(0, chunks, [&](int c) {
+        for (int y = n * c / chunks; y < n * (c + 1) / chunks; ++y)
             move_row(&h[size_t(y) * n], &h[size_t((y + 1) % n) * n], n, ex, ey, lo, inv_width, bins,
                      w.map.data(), dx, dy, &p[size_t(y) * n], &q[size_t(y) * n]);
+        bin_rows(c);
+    });
+    const float lo2_actual = *std::min_element(block_lo.begin(), block_lo.end());
+    const float hi2_actual = *std::max_element(block_hi.begin(), block_hi.end());
+    if (lo2_actual < lo2 || hi2_actual > hi2) {
+        lo2 = lo2_actual, hi2 = hi2_actual;
+        inv_width2 = float(bins) / std::max(hi2 - lo2, 1e-30f);
+        parallel_for(0, chunks, bin_rows);
+    }
+    const float margin2 = 0.05f * (hi2_actual - lo2_actual);
+    w.lo2 = lo2_actual - margin2, w.hi2 = hi2_actual + margin2;
+    transport_map(w.part, cells, *second, w.in_bin, w.map);
+    const float dx2 = float(std::cos(psi2) * ax), dy2 = float(std::sin(psi2) * ay);
+    parallel_for(0, chunks, [&](int c) {
+        const size_t first = size_t(n) * size_t(n * c / chunks);
+        const size_t last = size_t(n) * size_t(n * (c + 1) / chunks);
+        move_in_place(p + first, q + first, last - first, ex2, ey2, lo2, inv_width2, bins,
+                      w.map.data(), dx2, dy2);
     });
 }
 
@@ -273,6 +382,10 @@ void sample_slope_pool(const Ndf& ndf, int n, std::uint64_t seed, std::vector<fl
                        std::vector<float>& q) {
     p.resize(size_t(n) * n);
     q.resize(size_t(n) * n);
+    sample_slope_pool(ndf, n, seed, p.data(), q.data());
+}
+
+void sample_slope_pool(const Ndf& ndf, int n, std::uint64_t seed, float* p, float* q) {
     parallel_for(0, n, [&](int y) {
         Rng rng{seed, 0x706f6f6cull /* "pool" */, std::uint64_t(y)};
         for (int x = 0; x < n; ++x) {
@@ -292,15 +405,25 @@ HeightField generate_matching(const Ndf& ndf, const SurfaceSpec& spec, int threa
     const int n = spec.size;
     FrankotChellappa fc(n, threads);
 
-    std::vector<float> pool_p, pool_q;
-    sample_slope_pool(ndf, n, spec.seed, pool_p, pool_q);
     const size_t cells = size_t(n) * n;
     // The gradient field is written straight into the integrator's FFTW buffers.
     float* p = fc.gradient_x();
     float* q = fc.gradient_y();
     const bool constrained = spec.constraint != Constraint::none;
+    double ax = 1, ay = 1;
+    const bool shape_invariant = ndf.slope_stretch(ax, ay);
+    // Matching the NDF's exact marginal needs no pool but the start: drawn straight into the
+    // gradient buffers (the same values the pool holds).
+    const bool exact = sliced && spec.target == MatchTarget::quantiles && shape_invariant;
+    std::vector<float> pool_p, pool_q;
+    if (exact && !constrained)
+        sample_slope_pool(ndf, n, spec.seed, p, q);
+    else
+        sample_slope_pool(ndf, n, spec.seed, pool_p, pool_q);
     HeightField geometry;
-    if (constrained) {
+    if (exact && !constrained) {
+        // started above
+    } else if (constrained) {
         // R19 5.3.2: the gradient field starts from a geometry; the pool still follows D.
         geometry = constraint_geometry(spec.constraint, n, spec.lattice, spec.relief);
         // Flat regions would give ties that rank matching can never separate: dither the
@@ -327,15 +450,19 @@ HeightField generate_matching(const Ndf& ndf, const SurfaceSpec& spec, int threa
     log_schwarz(p, q, n, spec.threshold, lg);
     integrate();
 
-    double ax = 1, ay = 1;
-    std::unique_ptr<Quantiles> quantile;
+    std::unique_ptr<MarginalQuantile> quantile;
     SlicedWork work;
     std::vector<int> assigned;
     std::vector<float> h, gp, gq;
     // A shape-invariant target is isotropic once stretched: one projected marginal for every
-    // direction, sorted once. Any other (blends, mixtures, tables) is projected and sorted again
-    // along each iteration's direction, in plain slope space.
-    const bool per_direction = sliced && !ndf.slope_stretch(ax, ay);
+    // direction (the exact one, or the pool's sorted once). Any other (blends, mixtures, tables)
+    // is matched in plain slope space to the pool's projections along each direction: along 64
+    // fixed directions k pi / 64, sorted once, taken in orthogonal pairs (quantiles), or along each
+    // iteration's golden-angle direction, sorted every iteration (pool).
+    const bool per_direction = sliced && !shape_invariant;
+    const bool fixed_directions = per_direction && spec.target == MatchTarget::quantiles;
+    constexpr int kDirections = 64;
+    std::vector<std::unique_ptr<MarginalQuantile>> fixed;
     auto direction_quantiles = [&](double psi) {
         std::vector<float> proj(cells);
         const float c = float(std::cos(psi)), sn = float(std::sin(psi));
@@ -343,8 +470,21 @@ HeightField generate_matching(const Ndf& ndf, const SurfaceSpec& spec, int threa
         tbb::parallel_sort(proj.begin(), proj.end());
         return std::make_unique<Quantiles>(std::move(proj));
     };
-    if (per_direction) {
+    if (fixed_directions) {
+        std::vector<float> proj(cells);
+        for (int k = 0; k < kDirections; ++k) {
+            const double psi = k * kPi / kDirections;
+            const float c = float(std::cos(psi)), sn = float(std::sin(psi));
+            parallel_for(size_t(0), cells,
+                         [&](size_t i) { proj[i] = pool_p[i] * c + pool_q[i] * sn; });
+            tbb::parallel_sort(proj.begin(), proj.end());
+            fixed.push_back(std::make_unique<CompactQuantiles>(proj));
+        }
+    } else if (per_direction) {
         // quantile is made per iteration
+    } else if (exact) {
+        quantile = std::make_unique<TargetQuantiles>(ndf, cells);
+        if (ax != ay) fc.set_metric(1 / (ax * ax), 1 / (ay * ay)); // as below
     } else if (sliced) {
         // The target's 1-D marginal in the stretched frame, where it is isotropic: both stretched
         // components of the pool sample it, 2 n^2 values.
@@ -380,9 +520,18 @@ HeightField generate_matching(const Ndf& ndf, const SurfaceSpec& spec, int threa
     for (int it = 0; it < spec.iterations; ++it) {
         const auto t = Clock::now();
         if (sliced) {
-            const double psi = it * 2.39996322972865332; // golden angle
-            if (per_direction) quantile = direction_quantiles(psi);
-            sliced_step(fc.heights(), n, ax, ay, psi, *quantile, work, p, q);
+            if (fixed_directions) {
+                // The 32 orthogonal pairs in the order 13 k mod 32 (consecutive pairs ~37 deg
+                // apart; all of them every 32 iterations).
+                const int k = (it * 13) % (kDirections / 2);
+                sliced_step(fc.heights(), n, ax, ay, k * kPi / kDirections, *fixed[size_t(k)],
+                            fixed[size_t(k + kDirections / 2)].get(), work, p, q);
+            } else {
+                const double psi = it * 2.39996322972865332; // golden angle
+                if (per_direction) quantile = direction_quantiles(psi);
+                sliced_step(fc.heights(), n, ax, ay, psi, *quantile,
+                            exact ? quantile.get() : nullptr, work, p, q);
+            }
         } else {
             h.assign(fc.heights(), fc.heights() + cells);
             differentiate(h, n, gp, gq); // the integrated surface's gradient, grad h+
@@ -458,9 +607,24 @@ const Key kRelief =
     Key::number("relief", {1e-6, 100}, "domes/holes: height over radius").fallback(0.5);
 const std::vector<Key> kMatchingKeys{kIterations, kThreshold, kStop,
                                      kConstraint, kLattice,   kRelief};
+const Key kTarget = Key::string("target", enum_names<MatchTarget>(),
+                                "what each direction's projections are matched to: the NDF's "
+                                "exact marginal, two orthogonal directions per iteration "
+                                "(quantiles), or the sample pool's, one (pool: the surfaces of "
+                                "gonio before issue 35)")
+                        .fallback("quantiles")
+                        .noting("quantiles for shape-invariant NDFs; the others use the pool's "
+                                "marginal per direction either way");
+// Matching the exact marginal two directions at a time converges in a fifth of the iterations
+// (docs/performance.md: surface generation).
+constexpr int kQuantileIterations = 100;
+const Key kSlicedIterations = Key::integer("iterations", {0, 1e6}, "iterations of the generator")
+                                  .note_default("100; 500 with `target = \"pool\"` (R19)");
+const std::vector<Key> kSlicedKeys{kSlicedIterations, kThreshold, kStop,  kConstraint,
+                                   kLattice,          kRelief,    kTarget};
 
+// The settings both matching generators share (iterations are read by each).
 void read_matching(TableReader& r, const Ndf&, SurfaceSpec& s) {
-    s.iterations = static_cast<int>(r.integer(kIterations));
     s.threshold = r.number(kThreshold);
     s.stop_when_converged = r.boolean(kStop);
     s.constraint = enum_named<Constraint>(r.string(kConstraint));
@@ -470,8 +634,23 @@ void read_matching(TableReader& r, const Ndf&, SurfaceSpec& s) {
         s.relief = r.number(kRelief);
     }
 }
+void read_algorithm1(TableReader& r, const Ndf& ndf, SurfaceSpec& s) {
+    s.iterations = static_cast<int>(r.integer(kIterations));
+    read_matching(r, ndf, s);
+}
+void read_sliced(TableReader& r, const Ndf& ndf, SurfaceSpec& s) {
+    s.target = enum_named<MatchTarget>(r.string(kTarget));
+    s.iterations =
+        static_cast<int>(r.integer(kSlicedIterations.name, kSlicedIterations.range,
+                                   s.target == MatchTarget::pool ? 500 : kQuantileIterations));
+    read_matching(r, ndf, s);
+}
 // The common identity already holds the matching settings (iterations, threshold, ...).
 void no_more_identity(const SurfaceSpec&, std::ostream&) {}
+// The target, where it is not the pool (so that the pool's surfaces keep their identities).
+void sliced_identity(const SurfaceSpec& s, std::ostream& out) {
+    if (s.target != MatchTarget::pool) out << "|target=" << name_of(s.target);
+}
 bool follows_unless_constrained(const SurfaceSpec& s) {
     return s.constraint == Constraint::none;
 }
@@ -481,13 +660,13 @@ const SurfaceGenerator& sliced_matching_generator() {
     static const SurfaceGenerator g{
         "sliced-matching",
         "iterative Frankot-Chellappa with sliced optimal-transport matching (the default)",
-        &kMatchingKeys,
-        read_matching,
+        &kSlicedKeys,
+        read_sliced,
         [](const Ndf& ndf, const SurfaceSpec& s, int threads, GenerationLog* log,
            const ProgressFn& progress) {
             return generate_matching(ndf, s, threads, log, progress, true);
         },
-        no_more_identity,
+        sliced_identity,
         follows_unless_constrained};
     return g;
 }
@@ -497,7 +676,7 @@ const SurfaceGenerator& algorithm1_generator() {
         "algorithm1",
         "iterative Frankot-Chellappa with Schwarz-error rematching [R19 Algorithm 1]",
         &kMatchingKeys,
-        read_matching,
+        read_algorithm1,
         [](const Ndf& ndf, const SurfaceSpec& s, int threads, GenerationLog* log,
            const ProgressFn& progress) {
             return generate_matching(ndf, s, threads, log, progress, false);

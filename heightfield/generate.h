@@ -41,5 +41,7 @@ HeightField generate_surface(const Ndf& ndf, const SurfaceSpec& spec, int thread
 // deterministic function of the seed (one random stream per row).
 void sample_slope_pool(const Ndf& ndf, int n, std::uint64_t seed, std::vector<float>& p,
                        std::vector<float>& q);
+// The same into n*n floats each.
+void sample_slope_pool(const Ndf& ndf, int n, std::uint64_t seed, float* p, float* q);
 
 } // namespace gonio

@@ -24,6 +24,15 @@ struct EnumNames<Constraint> {
     static constexpr const char* what = "constraint";
     static constexpr const char* names[] = {"none", "domes", "holes"};
 };
+// What sliced matching matches each direction's projections to: the exact marginal of the NDF
+// (a quantile table computed from it, two orthogonal directions per iteration), or the marginal of
+// the sample pool (one direction per iteration: the generator of gonio 0.x, for its surfaces).
+enum class MatchTarget { quantiles, pool };
+template <>
+struct EnumNames<MatchTarget> {
+    static constexpr const char* what = "target";
+    static constexpr const char* names[] = {"quantiles", "pool"};
+};
 // Loaded maps: used as they are, or made periodic by tiling with mirror images.
 enum class Edges { periodic, mirror };
 template <>
@@ -37,10 +46,11 @@ struct SurfaceSpec {
     const SurfaceGenerator* generator = default_generator();
     // The matching generators' settings (sliced-matching, algorithm1) and heitz's.
     Constraint constraint = Constraint::none;
-    double correlation_length = 8.0;  // heitz: Gaussian correlation length, in samples
-    int size = 256;                   // samples per side
-    double spacing = 1.0;             // distance between samples
-    int iterations = 500;             // R19: 500
+    MatchTarget target = MatchTarget::quantiles; // sliced-matching: see MatchTarget
+    double correlation_length = 8.0;             // heitz: Gaussian correlation length, in samples
+    int size = 256;                              // samples per side
+    double spacing = 1.0;                        // distance between samples
+    int iterations = 100;             // sliced-matching of the quantiles; R19 (algorithm1): 500
     double threshold = 0.02;          // Schwarz threshold, R19: 0.02
     bool stop_when_converged = false; // stop when the NDF distance stops improving
     std::uint64_t seed = 1;

@@ -248,14 +248,20 @@ TEST_CASE("surface config: defaults, values and errors") {
     const Config d = parse_config(kBase, "t.toml");
     CHECK(d.cases[0].surface.generator == &sliced_matching_generator());
     CHECK(d.cases[0].surface.size == 256);
-    CHECK(d.cases[0].surface.iterations == 500);
+    CHECK(d.cases[0].surface.target == MatchTarget::quantiles);
+    CHECK(d.cases[0].surface.iterations == 100); // the exact marginal's default
     CHECK(d.cases[0].surface.threshold == 0.02);
+    // The pool's path keeps R19's 500 iterations, and so does Algorithm 1.
+    CHECK(parse_config(std::string(kBase) + "[surface]\ntarget = \"pool\"\n", "t.toml")
+              .cases[0]
+              .surface.iterations == 500);
     CHECK(d.cases[0].surface.seed == 7); // the run's seed
     const Config c =
         parse_config(std::string(kBase) + "[surface]\ngenerator = \"algorithm1\"\nsize = 64\n"
                                           "constraint = \"domes\"\nlattice = 4\n",
                      "t.toml");
     CHECK(c.cases[0].surface.generator == &algorithm1_generator());
+    CHECK(c.cases[0].surface.iterations == 500);
     CHECK(c.cases[0].surface.constraint == Constraint::domes);
     CHECK(c.cases[0].surface.lattice == 4);
     auto err = [](const std::string& extra) {

@@ -24,6 +24,9 @@ namespace {
 HeightField surface_of(const Ndf& ndf, int n, std::uint64_t seed = 1) {
     SurfaceSpec s;
     s.size = n;
+    // The pool's path, on which the workloads below (segment counts) were sized; the traversal
+    // does not care how the surface was made.
+    s.target = MatchTarget::pool;
     s.iterations = 40;
     s.seed = seed;
     return generate_surface(ndf, s, 2);

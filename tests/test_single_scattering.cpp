@@ -84,6 +84,12 @@ TEST_CASE("generated Beckmann 0.5: simulated L1 against the height-correlated Sm
     const Beckmann target(0.5);
     SurfaceSpec spec;
     spec.size = 512;
+    // The surface these findings were recorded on (the pool's path, 500 iterations). On the exact
+    // marginal's default surface (100 iterations) the 60 deg gap is +0.0012 (tolerance 0.0007),
+    // 0 deg +0.0096, 75 deg -0.0012: the same signs, the crossing moved past 60 deg; the gap
+    // belongs to each surface's masking (docs/masking.md), not to Smith's alpha.
+    spec.target = MatchTarget::pool;
+    spec.iterations = 500;
     const HeightField surface = generate_surface(target, spec, 2);
     const SurfaceMetrics m = measure_surface(surface, target);
     // The surface's roughness, and how well it is known: the spread of its estimators (median

@@ -1,4 +1,5 @@
 #include "core/random.h"
+#include "core/special_functions.h"
 #include "heightfield/exr_io.h"
 #include "heightfield/frankot_chellappa.h"
 #include "heightfield/generate.h"
@@ -9,6 +10,7 @@
 #include "heightfield/ndf/mixture_ndf.h"
 #include "heightfield/ndf/sinc_ndf.h"
 #include "heightfield/ndf/student_t.h"
+#include "heightfield/slope_marginal.h"
 #include "heightfield/surface_generator.h"
 #include "heightfield/surface_metrics.h"
 #include "heightfield/surface_source.h"
@@ -46,12 +48,16 @@ IidDistance iid_distance(const std::vector<double>& target_mass, double facets) 
     return d;
 }
 
-HeightField make(const Ndf& ndf, const std::string& generator, int iterations = 500,
+// iterations 0: the generator's default (sliced matching 100, Algorithm 1 R19's 500).
+HeightField make(const Ndf& ndf, const std::string& generator, int iterations = 0,
                  std::uint64_t seed = 1, const std::string& constraint = "none",
                  GenerationLog* log = nullptr) {
     SurfaceSpec s;
     s.size = 256;
-    s.iterations = iterations;
+    if (iterations > 0)
+        s.iterations = iterations;
+    else if (generator == "algorithm1")
+        s.iterations = 500;
     s.generator = &generator_named(generator);
     s.constraint = constraint == "none"    ? Constraint::none
                    : constraint == "domes" ? Constraint::domes
@@ -102,6 +108,31 @@ TEST_CASE("Frankot-Chellappa recovers a periodic surface from its exact gradient
     }
 }
 
+TEST_CASE("the exact slope marginal: Beckmann and GGX quantiles against their closed forms") {
+    // Stretched unit-roughness slopes: Beckmann's marginal is a normal of variance 1/2
+    // (erf_quantile), GGX's has the CDF (1 + x / sqrt(1 + x^2)) / 2. Whatever alpha_x, alpha_y.
+    const TargetQuantiles beckmann(Beckmann(0.75), 1 << 20), ggx(Ggx(0.3, 0.6), 1 << 20);
+    auto ggx_quantile = [](double u) {
+        const double v = 2 * u - 1;
+        return v / std::sqrt(1 - v * v);
+    };
+    for (int i = 1; i < 2000; ++i) {
+        const double u = 0.002 + 0.996 * i / 2000.0; // the table
+        CAPTURE(u);
+        CHECK(std::abs(beckmann(u) - erf_quantile(u)) <= 1e-6 * (1 + std::abs(erf_quantile(u))));
+        CHECK(std::abs(ggx(u) - ggx_quantile(u)) <= 1e-5 * (1 + std::abs(ggx_quantile(u))));
+    }
+    for (double tail : {1e-3, 3e-4, 1e-4, 3e-5, 1e-5, 3e-6, 1e-6}) // integrated and inverted
+        for (double u : {tail, 1 - tail}) {
+            CAPTURE(u);
+            CHECK(beckmann(u) == doctest::Approx(erf_quantile(u)).epsilon(1e-4));
+            CHECK(ggx(u) == doctest::Approx(ggx_quantile(u)).epsilon(1e-4));
+        }
+    // Ranks beyond the extreme order statistics of 2^20 projections are clamped to them.
+    CHECK(beckmann(0.0) == doctest::Approx(erf_quantile(0.5 / (1 << 20))).epsilon(1e-4));
+    CHECK(ggx(1.0) == doctest::Approx(ggx_quantile(1 - 0.5 / (1 << 20))).epsilon(1e-4));
+}
+
 TEST_CASE("sliced matching: Beckmann 0.5 and GGX 0.3 at 256^2 follow their NDF") {
     // Bar: no further from D cos than an ideal independent sample of as many facets, and the
     // effective alpha within 3 %.
@@ -127,7 +158,8 @@ TEST_CASE("sliced matching: a multi-lobe sinc curve and two anisotropic blends [
     // elliptical one: the TV stays at 1.5-1.9 x the ideal from 100 to 2000 iterations and at
     // 100 bins does not fall with the size (0.024 for the sinc, 0.035 for the GGX/Beckmann blend
     // at 256^2 and 512^2), while an elliptical target through the same per-direction path (a
-    // one-component mixture of anisotropic Beckmann) reaches the ideal. Recorded in docs/microsurfaces.md.
+    // one-component mixture of anisotropic Beckmann) reaches the ideal. Recorded in
+    // docs/microsurfaces.md.
     const SincNdf sinc(6.0, 0.05, 128);
     check_fidelity(make(sinc, "sliced-matching"), sinc, 1, 1, 2.5);
     const AnisotropicBlend ggx_beckmann(std::make_unique<Ggx>(0.5, 0.5),
@@ -164,7 +196,7 @@ TEST_CASE("Heitz and constrained generators follow Beckmann too") {
     check_fidelity(generate_surface(beckmann, heitz, 2), beckmann, 0.5, 0.5, 3.0);
     for (const std::string c : {"domes", "holes"}) {
         CAPTURE(c);
-        check_fidelity(make(beckmann, "sliced-matching", 500, 1, c), beckmann, 0.5, 0.5, 3.0);
+        check_fidelity(make(beckmann, "sliced-matching", 0, 1, c), beckmann, 0.5, 0.5, 3.0);
     }
 }
 
@@ -211,6 +243,21 @@ TEST_CASE("same seed, same heights with 1 and 2 threads, and another seed, anoth
         CHECK(one.h == two.h);
         s.seed = 2;
         CHECK(generate_surface(ggx, s, 2).h != two.h);
+    }
+    // The pool's path, and a target that is not shape-invariant (the fixed directions' tables).
+    const AnisotropicBlend blend(std::make_unique<Ggx>(0.5, 0.5), std::make_unique<Beckmann>(0.25));
+    for (MatchTarget target : {MatchTarget::pool, MatchTarget::quantiles}) {
+        SurfaceSpec s;
+        s.size = 128;
+        s.iterations = 30;
+        s.target = target;
+        HeightField one;
+        {
+            tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+            one = generate_surface(blend, s, 1);
+        }
+        CHECK(one.h == generate_surface(blend, s, 2).h);
+        CHECK(generate_surface(ggx, s, 2).h == generate_surface(ggx, s, 1).h);
     }
 }
 
@@ -334,6 +381,8 @@ TEST_CASE("the cache key covers every parameter that defines a surface") {
     s = base, s.constraint = Constraint::domes;
     CHECK(differs(s));
     s = base, s.stop_when_converged = true;
+    CHECK(differs(s));
+    s = base, s.target = MatchTarget::pool;
     CHECK(differs(s));
     SurfaceSpec d = base;
     d.constraint = Constraint::domes;
