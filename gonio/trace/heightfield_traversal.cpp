@@ -158,14 +158,19 @@ BeamEntry HeightfieldTraversal::beam_entry(const Vec3& d, double z_start, long l
     BeamEntry e;
     e.d = d, e.z_start = z_start, e.shift = kBeamShift;
     const double speed_xy = std::max(std::abs(d.x), std::abs(d.y));
-    // Rays that cross many cells within the relief (grazing ones) have the pyramid instead.
-    if (!(d.z < 0) || relief_ * inv_spacing_ * speed_xy > 128 * -d.z) return e;
+    if (!(d.z < 0)) return e;
     const int b = 1 << kBeamShift, w = (n_ + b - 1) >> kBeamShift;
     // A block costs about what 1.5 rays save (1024^2, theta_i 60 deg: 520 instructions against
     // 340 per beam ray, callgrind).
     if (rays < 2 * (long long)w * w) return e;
     e.width = w;
     e.t.resize(size_t(w) * size_t(w));
+    // Rays that cross many cells within the relief (grazing ones) march far: a march of their
+    // own.
+    if (relief_ * inv_spacing_ * speed_xy > 128 * -d.z) {
+        grazing_entry(e);
+        return e;
+    }
     // Steps of just under one cell of travel, up to a quarter of the patch (so that the walk's
     // leap there crosses at most one side wall per axis).
     const double step = speed_xy > 0 ? 0.99 * spacing_ / speed_xy : kInf;
@@ -208,6 +213,114 @@ BeamEntry HeightfieldTraversal::beam_entry(const Vec3& d, double z_start, long l
         }
     });
     return e;
+}
+
+void HeightfieldTraversal::grazing_entry(BeamEntry& e) const {
+    // Per block of origins, steps along the ray that double while the rectangle the block's rays
+    // sweep over the step is clear of the surface and halve where it is not, down to a cell of
+    // travel: each rectangle bounded by the few pyramid nodes of the level that cover it. The
+    // rays may travel several periods before they come down to the surface: the walk's leap
+    // crosses the walls.
+    const Vec3 d = e.d;
+    const int n = n_, b = 1 << e.shift;
+    const double speed_xy = std::max(std::abs(d.x), std::abs(d.y));
+    const double unit = spacing_ / speed_xy; // one cell of travel
+    const double inv_dz = 1.0 / d.z;
+    const float global_max = pyramid_[level_offset_[size_t(top_)] + 1];
+    const double fine = 0.99 * unit; // a window's step (see beam_entry)
+    const size_t window = size_t(n + 1) / 2;
+    // The cell of coordinate v, periodic.
+    auto cell = [n, inv = inv_spacing_](double v) {
+        long long i = (long long)std::floor(v * inv);
+        i %= n;
+        return int(i < 0 ? i + n : i);
+    };
+    // The largest vertex height of the cells in [i0, i0 + wx) x [j0, j0 + wy) (periodic; the
+    // indices may lie outside [0, n)).
+    auto rectangle_max = [&](long long i0, long long j0, long long wx, long long wy) {
+        const long long wide = std::max(wx, wy);
+        if (wide >= n) return global_max;
+        int level = 1;
+        while ((1LL << level) < wide) ++level;
+        if (level >= top_) return global_max;
+        const int width = level_width_[size_t(level)];
+        const float* nodes = pyramid_.data() + level_offset_[size_t(level)];
+        // The nodes that hold the cells [c0, c0 + count) along one axis (at most 3: every node
+        // but the last holds 2^level cells).
+        auto covering = [&](long long c0, long long count, int out[3]) {
+            long long c = ((c0 % n) + n) % n;
+            int k = 0;
+            while (count > 0) {
+                const int node = int(c >> level);
+                out[k++] = node;
+                const long long end = std::min<long long>((long long)(node + 1) << level, n);
+                count -= end - c;
+                c = end == n ? 0 : end;
+            }
+            return k;
+        };
+        int xs[3], ys[3];
+        const int kx = covering(i0, wx, xs), ky = covering(j0, wy, ys);
+        float m = -std::numeric_limits<float>::max();
+        for (int y = 0; y < ky; ++y)
+            for (int x = 0; x < kx; ++x)
+                m = std::max(m, nodes[2 * (size_t(ys[y]) * size_t(width) + size_t(xs[x])) + 1]);
+        return m;
+    };
+    parallel_for(0, e.width, [&](int bj) {
+        for (int bi = 0; bi < e.width; ++bi) {
+            // The block's origins lie in cells [bi b, bi b + b) x [bj b, bj b + b).
+            const double x0 = double(bi * b), y0 = double(bj * b); // in cells
+            // The cells its rays cross over [ta, tb], a cell to spare on every side.
+            auto bound = [&](double ta, double tb) {
+                const double xa = std::min(ta * d.x, tb * d.x) * inv_spacing_;
+                const double xb = std::max(ta * d.x, tb * d.x) * inv_spacing_;
+                const double ya = std::min(ta * d.y, tb * d.y) * inv_spacing_;
+                const double yb = std::max(ta * d.y, tb * d.y) * inv_spacing_;
+                const long long i0 = (long long)std::floor(x0 + xa) - 1;
+                const long long i1 = (long long)std::floor(x0 + b + xb) + 1;
+                const long long j0 = (long long)std::floor(y0 + ya) - 1;
+                const long long j1 = (long long)std::floor(y0 + b + yb) + 1;
+                return double(rectangle_max(i0, j0, i1 - i0 + 1, j1 - j0 + 1)) + 2 * pad_;
+            };
+            double t = 0, step = unit, clear = 0;
+            for (;;) {
+                const double tb = t + step;
+                // Clear while the ray's height (falling) stays above the bound.
+                const double t_reach = (bound(t, tb) - e.z_start) * inv_dz;
+                if (t_reach > tb) {
+                    t = tb, step *= 2;
+                    continue;
+                }
+                if (step > unit) {
+                    step = std::max(unit, 0.5 * step);
+                    continue;
+                }
+                clear = std::max(t, t_reach);
+                break;
+            }
+            // Then steps of just under a cell with the tighter beam windows (as for steeper
+            // beams), while they stay clear.
+            for (int k = 0; k < kGrazingWindowSteps; ++k) {
+                const double tb = clear + fine;
+                const double xa = (x0 * spacing_) + std::min(clear * d.x, tb * d.x);
+                const double ya = (y0 * spacing_) + std::min(clear * d.y, tb * d.y);
+                const double w_bound =
+                    double(beam_window_[size_t(cell(ya) >> 1) * window + size_t(cell(xa) >> 1)]) +
+                    2 * pad_;
+                const double t_reach = (w_bound - e.z_start) * inv_dz;
+                if (!(t_reach > tb)) {
+                    clear = std::max(clear, t_reach);
+                    break;
+                }
+                clear = tb;
+            }
+            // Rounded down to float.
+            float c = float(clear);
+            if (double(c) > clear) c = std::nextafter(c, 0.0f);
+            e.t[size_t(bj) * size_t(e.width) + size_t(bi)] = c;
+        }
+    });
 }
 
 std::size_t HeightfieldTraversal::memory_bytes() const {

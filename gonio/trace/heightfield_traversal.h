@@ -36,8 +36,9 @@ struct TraversalHit {
 
 // A beam: rays of one direction `d`, going down, that start on the plane z = z_start. Per block of
 // 2^shift x 2^shift cells of origins, a distance along the ray that every ray starting over the
-// block travels clear of the surface, so that its walk starts there (built by
-// HeightfieldTraversal::beam_entry; empty, width 0, where it would not pay).
+// block travels clear of the surface, so that its walk starts there, possibly several periods
+// away for grazing beams (built by HeightfieldTraversal::beam_entry; empty, width 0, where it
+// would not pay).
 struct BeamEntry {
     Vec3 d;
     double z_start = 0;
@@ -107,9 +108,13 @@ class HeightfieldTraversal {
     // cell a block's rays cross over one cell of travel from cell (i, j) or (i + 1, j + 1) on,
     // with a cell to spare; ceil(n / 2)^2 of them.
     static constexpr int kBeamShift = 2;
+    static constexpr int kGrazingWindowSteps = 64; // see grazing_entry
     std::vector<float> beam_window_;
 
     bool avx2_ = false; // the walk compiled for AVX2 (the same results)
+
+    // beam_entry's clear distances for a grazing beam (e sized, its d and z_start set).
+    void grazing_entry(BeamEntry& e) const;
 
     // The walk for the ray's orientation, in the chosen instruction set.
     template <bool Avx2>
