@@ -19,6 +19,11 @@ void tbb_parallel_loop(void* (*work)(char*), char* jobdata, size_t elsize, int n
 }
 } // namespace
 
+std::mutex& fftwf_planner() {
+    static std::mutex m;
+    return m;
+}
+
 void init_fftw_threads() {
     static std::once_flag once;
     std::call_once(once, [] {
@@ -38,8 +43,7 @@ FrankotChellappa::FrankotChellappa(int n, int threads) : n_(n) {
     spec_q_ = fftwf_alloc_complex(spec_count);
     if (!real_ || !real_q_ || !heights_ || !spec_p_ || !spec_q_) throw std::bad_alloc();
     // The planner is not thread-safe; plans are made here, once.
-    static std::mutex planner;
-    std::lock_guard<std::mutex> lock(planner);
+    std::lock_guard<std::mutex> lock(fftwf_planner());
     fftwf_plan_with_nthreads(std::max(1, threads));
     forward_p_ = fftwf_plan_dft_r2c_2d(n, n, real_, spec_p_, FFTW_ESTIMATE);
     forward_q_ = fftwf_plan_dft_r2c_2d(n, n, real_q_, spec_q_, FFTW_ESTIMATE);
@@ -73,6 +77,7 @@ void FrankotChellappa::set_metric(double wx, double wy) {
 }
 
 FrankotChellappa::~FrankotChellappa() {
+    std::lock_guard<std::mutex> lock(fftwf_planner());
     if (forward_p_) fftwf_destroy_plan(forward_p_);
     if (forward_q_) fftwf_destroy_plan(forward_q_);
     if (backward_) fftwf_destroy_plan(backward_);

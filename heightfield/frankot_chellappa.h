@@ -8,6 +8,7 @@
 // would leave a null space at the Nyquist frequency. Plans are made once (FFTW_ESTIMATE, so they do
 // not depend on timing) and reused.
 #include <fftw3.h>
+#include <mutex>
 #include <vector>
 
 namespace gonio {
@@ -56,5 +57,9 @@ class FrankotChellappa {
 
 // Calls fftwf_init_threads once; safe to call repeatedly.
 void init_fftw_threads();
+
+// FFTW's planner is not thread-safe (only fftwf_execute is): every single-precision plan is made
+// and destroyed under this lock, since an ensemble makes its next surface while it traces.
+std::mutex& fftwf_planner();
 
 } // namespace gonio

@@ -22,8 +22,7 @@ HeightField heitz_surface(int n, double alpha_x, double alpha_y, double correlat
     float* real = fftwf_alloc_real(size_t(n) * n);
     fftwf_plan plan;
     {
-        static std::mutex planner;
-        std::lock_guard<std::mutex> lock(planner);
+        std::lock_guard<std::mutex> lock(fftwf_planner());
         init_fftw_threads();
         fftwf_plan_with_nthreads(1);
         plan = fftwf_plan_dft_c2r_2d(n, n, spec, real, FFTW_ESTIMATE);
@@ -50,7 +49,10 @@ HeightField heitz_surface(int n, double alpha_x, double alpha_y, double correlat
     fftwf_execute(plan); // c2r keeps the Hermitian part: a real Gaussian field
     HeightField s(n, 1.0);
     s.h.assign(real, real + size_t(n) * n);
-    fftwf_destroy_plan(plan);
+    {
+        std::lock_guard<std::mutex> lock(fftwf_planner());
+        fftwf_destroy_plan(plan);
+    }
     fftwf_free(spec);
     fftwf_free(real);
     // Scale so the RMS forward-difference slope along x is alpha_x / sqrt(2) (Beckmann).
