@@ -163,11 +163,16 @@ BeamEntry HeightfieldTraversal::beam_entry(const Vec3& d, double z_start, long l
     // A block costs about what 1.5 rays save (1024^2, theta_i 60 deg: 520 instructions against
     // 340 per beam ray, callgrind).
     if (rays < 2 * (long long)w * w) return e;
+    // The cells a ray crosses within the relief; none for a ray that would cross it over more
+    // than 2^10 periods (within ~10^-4 rad of the horizon, beyond beam.theta_i's range), whose
+    // leap would cross as many walls.
+    const double slab_cells = relief_ * inv_spacing_ * speed_xy / -d.z;
+    if (!(slab_cells <= 1024.0 * n_)) return e;
     e.width = w;
     e.t.resize(size_t(w) * size_t(w));
     // Rays that cross many cells within the relief (grazing ones) march far: a march of their
     // own.
-    if (relief_ * inv_spacing_ * speed_xy > 128 * -d.z) {
+    if (slab_cells > 128) {
         grazing_entry(e);
         return e;
     }

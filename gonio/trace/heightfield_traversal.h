@@ -52,8 +52,8 @@ class HeightfieldTraversal {
 
     // Follows the ray from `o` (anywhere: the patch repeats) along `d` to the first triangle it
     // meets at t >= 0, from either side, crossing the side walls natively (at most max_wraps
-    // times, else kind = lost), or until it passes the plane z_top going up or z_bottom going
-    // down (escaped_up / escaped_down).
+    // times, else kind = lost, wraps then > max_wraps), or until it passes the plane z_top going
+    // up or z_bottom going down (escaped_up / escaped_down).
     // A ray of `beam` (its direction, starting on its plane) starts at its block's clear
     // distance; any other ray ignores it.
     TraversalHit trace(const Vec3& o, const Vec3& d, double z_top, double z_bottom, int max_wraps,
