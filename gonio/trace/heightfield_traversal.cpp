@@ -24,6 +24,13 @@ struct Projected {
 [[gnu::always_inline]] inline double edge(const Projected& p, const Projected& q) {
     return p.x * q.y - p.y * q.x;
 }
+
+// A clear distance rounded down to float (a start table's entry must not overshoot).
+float float_below(double clear) {
+    float c = float(clear);
+    if (double(c) > clear) c = std::nextafter(c, 0.0f);
+    return c;
+}
 } // namespace
 
 HeightfieldTraversal::HeightfieldTraversal(const HeightField& s)
@@ -211,10 +218,7 @@ BeamEntry HeightfieldTraversal::beam_entry(const Vec3& d, double z_start, long l
                 }
                 clear = tb;
             }
-            // Rounded down to float.
-            float c = float(clear);
-            if (double(c) > clear) c = std::nextafter(c, 0.0f);
-            e.t[size_t(bj) * size_t(w) + size_t(bi)] = c;
+            e.t[size_t(bj) * size_t(w) + size_t(bi)] = float_below(clear);
         }
     });
     return e;
@@ -320,10 +324,7 @@ void HeightfieldTraversal::grazing_entry(BeamEntry& e) const {
                 }
                 clear = tb;
             }
-            // Rounded down to float.
-            float c = float(clear);
-            if (double(c) > clear) c = std::nextafter(c, 0.0f);
-            e.t[size_t(bj) * size_t(e.width) + size_t(bi)] = c;
+            e.t[size_t(bj) * size_t(e.width) + size_t(bi)] = float_below(clear);
         }
     });
 }
