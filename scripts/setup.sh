@@ -10,7 +10,7 @@ packages=(
   build-essential cmake pkg-config git
   libembree-dev libfftw3-dev libopenexr-dev libhdf5-dev libtbb-dev
   libcli11-dev libtomlplusplus-dev doctest-dev nlohmann-json3-dev libpng-dev zlib1g-dev
-  libopenmpi-dev openmpi-bin libceres-dev
+  libopenmpi-dev openmpi-bin libceres-dev pybind11-dev python3-pybind11 python3-pytest
   python3-h5py python3-numpy python3-matplotlib python3-xarray python3-h5netcdf
   python3-plotly chromium chromium-driver python3-selenium
 )
@@ -40,3 +40,11 @@ fi
 extra=(${GONIO_CMAKE_ARGS:-})
 cmake -S . -B "$build" "${args[@]}" "${extra[@]}" > /dev/null
 cmake --build "$build" -j "$(nproc)"
+
+# The Python module: Debian's /usr/bin/python3 finds build/python through a .pth file in its
+# site directory (root only; otherwise PYTHONPATH=build/python). Not for sanitizer builds.
+if [[ "$build" == build && $(id -u) -eq 0 ]]; then
+  site=$(/usr/bin/python3 -c "import site; print(site.getsitepackages()[0])")
+  mkdir -p "$site"
+  echo "$(pwd)/build/python" > "$site/gonio.pth"
+fi

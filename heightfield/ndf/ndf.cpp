@@ -27,7 +27,8 @@ double Ndf::G2(const Vec3& i, const Vec3& o, const Vec3& m, MaskingForm form,
     const double im = dot(i, m), om = dot(o, m);
     if (im <= 0 || om <= 0) return 0.0;
     if (form == MaskingForm::v_cavity) // M18 Eq. 15: exact for V-grooves along m's azimuth
-        return std::min({1.0, 2.0 * i.z * m.z / im, 2.0 * o.z * m.z / om});
+        return i.z <= 0 || o.z <= 0 ? 0.0
+                                    : std::min({1.0, 2.0 * i.z * m.z / im, 2.0 * o.z * m.z / om});
     return smith_g2(lambda_i, lambda(o), i, o, form);
 }
 

@@ -1,0 +1,58 @@
+#pragma once
+// gonio's Python module (_gonio, wrapped by the package python/gonio): each file binds one part of
+// the library. Directions cross as numpy arrays of shape (..., 3), evaluated in C++ without the
+// GIL; results come back with the arrays' leading shape.
+#include "core/math.h"
+#include "gonio/config/config.h"
+
+#include <functional>
+#include <memory>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <string>
+#include <vector>
+
+namespace gonio::python {
+
+namespace py = pybind11;
+
+using Doubles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// An array of vectors of length `width` (the last axis): how many, and the shape before the last
+// axis (empty for a single vector).
+struct Vectors {
+    Doubles array;
+    py::ssize_t count = 0;
+    std::vector<py::ssize_t> leading;
+    const double* at(py::ssize_t k) const {
+        return array.data() + (leading.empty() ? 0 : k * width);
+    }
+    int width = 3;
+};
+Vectors vectors(const py::handle& h, int width, const char* what);
+
+// The common count and leading shape of several arrays of vectors: each has the same leading
+// shape or is a single vector (broadcast). Throws ValueError naming `what` otherwise.
+std::vector<py::ssize_t> broadcast(const std::vector<const Vectors*>& inputs, py::ssize_t& count,
+                                   const char* what);
+
+// A new array of shape leading + tail.
+Doubles new_array(const std::vector<py::ssize_t>& leading, const std::vector<py::ssize_t>& tail);
+
+// A case of a config: the Python object keeps its config alive.
+struct CaseRef {
+    std::shared_ptr<const Config> config;
+    const CaseConfig* c;
+};
+
+inline Vec3 vec3(const double* p) {
+    return {p[0], p[1], p[2]};
+}
+
+void bind_config(py::module_& m);
+void bind_run(py::module_& m);
+void bind_ndf(py::module_& m);
+void bind_models(py::module_& m);
+void bind_surface(py::module_& m);
+
+} // namespace gonio::python

@@ -1,0 +1,138 @@
+// gonio.surface(case).generate() and gonio.surface_from_array(): height fields as numpy arrays
+// (float32, shape (n, n), row y, column x) that share the surface's memory, with the fidelity
+// metrics of heightfield/surface_metrics.h.
+#include "bindings.h"
+#include "core/threads.h"
+#include "heightfield/surface_metrics.h"
+#include "heightfield/surface_source.h"
+
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <pybind11/stl.h>
+
+namespace gonio::python {
+
+namespace {
+struct Surface {
+    HeightField field;
+    GenerationLog log;
+    std::string origin; // "generated", "cache", "loaded", "array"
+};
+
+struct SurfaceMaker {
+    CaseRef ref;
+};
+
+py::dict metrics_of(const Surface& s, const Ndf& ndf, int bins) {
+    SurfaceMetrics m;
+    {
+        py::gil_scoped_release release;
+        m = measure_surface(s.field, ndf, bins);
+    }
+    py::dict d;
+    d["ndf_distance"] = m.ndf_distance;
+    d["ndf_bins"] = m.ndf_bins;
+    d["alpha_eff"] = py::make_tuple(m.alpha_eff_x, m.alpha_eff_y);
+    d["alpha_rms"] = py::make_tuple(m.alpha_rms_x, m.alpha_rms_y);
+    d["target_alpha"] = py::make_tuple(m.target_alpha_x, m.target_alpha_y);
+    d["height_rms"] = m.height_rms;
+    d["height_range"] = py::make_tuple(m.height_min, m.height_max);
+    d["correlation_length"] = py::make_tuple(m.correlation_length_x, m.correlation_length_y);
+    return d;
+}
+
+std::shared_ptr<Surface> generate(const SurfaceMaker& maker, std::optional<int> threads,
+                                  const py::object& cache) {
+    const CaseConfig& c = *maker.ref.c;
+    SurfaceCache store(std::string{});
+    if (cache.is_none() || (py::isinstance<py::bool_>(cache) && cache.cast<bool>()))
+        store = SurfaceCache(default_cache_directory());
+    else if (!py::isinstance<py::bool_>(cache))
+        store = SurfaceCache(py::str(cache).cast<std::string>());
+    auto s = std::make_shared<Surface>();
+    {
+        const auto limit = limit_threads(threads.value_or(0));
+        py::gil_scoped_release release;
+        SurfaceOrigin origin;
+        // Realisation 0: the surface `gonio run` traces first (the only one without an ensemble).
+        s->field = obtain_surface(*c.ndf, realisation(c.surface, 0), store,
+                                  worker_threads(threads.value_or(0)), origin);
+        s->log = origin.log;
+        s->origin = origin.loaded ? "loaded" : origin.from_cache ? "cache" : "generated";
+    }
+    return s;
+}
+} // namespace
+
+void bind_surface(py::module_& m) {
+    py::class_<Surface, std::shared_ptr<Surface>>(
+        m, "Surface", "A periodic height field: n x n heights, `spacing` apart")
+        .def_property_readonly(
+            "heights",
+            [](const std::shared_ptr<Surface>& s) -> py::array_t<float> {
+                const py::ssize_t n = s->field.n, size = sizeof(float);
+                // The surface's own memory: the array keeps the Surface alive.
+                return py::array_t<float>(std::vector<py::ssize_t>{n, n},
+                                          std::vector<py::ssize_t>{n * size, size},
+                                          s->field.h.data(), py::cast(s));
+            },
+            "heights[y, x], float32, sharing the surface's memory (no copy)")
+        .def_property_readonly("n", [](const Surface& s) { return s.field.n; })
+        .def_property_readonly("spacing", [](const Surface& s) { return s.field.spacing; })
+        .def_property_readonly(
+            "origin", [](const Surface& s) { return s.origin; },
+            "generated, cache, loaded (surface.input) or array")
+        .def_property_readonly(
+            "generation",
+            [](const Surface& s) {
+                py::dict d;
+                d["iterations"] = s.log.iterations;
+                d["seconds"] = s.log.seconds;
+                d["schwarz_mean"] = s.log.schwarz_mean;
+                d["converged_early"] = s.log.converged_early;
+                return d;
+            },
+            "the generator's log: iterations, time, mean Schwarz error per iteration")
+        .def(
+            "metrics",
+            [](const Surface& s, const Ndf& ndf, int bins) { return metrics_of(s, ndf, bins); },
+            py::arg("ndf"), py::arg("bins") = 1000,
+            "Fidelity to a distribution: TV distance of the facet normals to D(m) cos(theta_m) "
+            "on `bins` equal-area cells, effective roughness, height statistics, correlation "
+            "lengths")
+        .def("__repr__", [](const Surface& s) {
+            return "<gonio.Surface " + std::to_string(s.field.n) + "^2, spacing " +
+                   py::str(py::float_(s.field.spacing)).cast<std::string>() + ", " + s.origin + ">";
+        });
+
+    py::class_<SurfaceMaker>(m, "SurfaceMaker", "A case's surface, to generate (gonio.surface)")
+        .def("generate", &generate, py::arg("threads") = py::none(), py::arg("cache") = py::none(),
+             "The case's surface as `gonio run` traces it (realisation 0), through the surface "
+             "cache unless cache=False (cache=PATH: that directory)");
+    m.def(
+        "surface", [](const CaseRef& r) { return SurfaceMaker{r}; }, py::arg("case"),
+        "The surface of a case (gonio.Config.cases[k]): .generate() makes it");
+    m.def(
+        "surface_from_array",
+        [](const py::array_t<float, py::array::c_style | py::array::forcecast>& heights,
+           double spacing) {
+            if (heights.ndim() != 2 || heights.shape(0) != heights.shape(1) || heights.shape(0) < 2)
+                throw py::value_error("surface_from_array: a square array of heights of shape "
+                                      "(n, n), n >= 2, is needed");
+            if (!(spacing > 0) || !std::isfinite(spacing))
+                throw py::value_error("surface_from_array: spacing must be finite and > 0");
+            auto s = std::make_shared<Surface>();
+            s->field = HeightField(int(heights.shape(0)), spacing);
+            std::copy(heights.data(), heights.data() + heights.size(), s->field.h.begin());
+            for (float v : s->field.h)
+                if (!std::isfinite(v))
+                    throw py::value_error("surface_from_array: the heights must be finite");
+            s->origin = "array";
+            return s;
+        },
+        py::arg("heights"), py::arg("spacing") = 1.0,
+        "A periodic surface of one's own: heights[y, x] (copied as float32), `spacing` apart");
+}
+
+} // namespace gonio::python
