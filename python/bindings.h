@@ -4,6 +4,9 @@
 // GIL; results come back with the arrays' leading shape.
 #include "core/math.h"
 #include "gonio/config/config.h"
+#include "heightfield/generate.h"
+#include "heightfield/heightfield.h"
+#include "heightfield/surface_cache.h"
 
 #include <functional>
 #include <memory>
@@ -39,6 +42,9 @@ std::vector<py::ssize_t> broadcast(const std::vector<const Vectors*>& inputs, py
 // A new array of shape leading + tail.
 Doubles new_array(const std::vector<py::ssize_t>& leading, const std::vector<py::ssize_t>& tail);
 
+// The `cache` argument: None or True the command's default directory, False none, else a path.
+SurfaceCache surface_cache(const py::object& cache);
+
 // A case of a config: the Python object keeps its config alive.
 struct CaseRef {
     std::shared_ptr<const Config> config;
@@ -49,10 +55,22 @@ inline Vec3 vec3(const double* p) {
     return {p[0], p[1], p[2]};
 }
 
+// A height field held by Python (gonio.Surface).
+struct Surface {
+    HeightField field;
+    GenerationLog log;
+    std::string origin; // "generated", "cache", "loaded", "array"
+};
+
+// Surface.masking and Surface.facet_ndf (masking_bindings.cpp).
+void bind_surface_masking(py::class_<Surface, std::shared_ptr<Surface>>& surface);
+
 void bind_config(py::module_& m);
 void bind_run(py::module_& m);
 void bind_ndf(py::module_& m);
 void bind_models(py::module_& m);
 void bind_surface(py::module_& m);
+void bind_masking(py::module_& m);
+void bind_table(py::module_& m);
 
 } // namespace gonio::python

@@ -29,13 +29,6 @@ class PendingError {
     PyObject *type_ = nullptr, *value_ = nullptr, *trace_ = nullptr;
 };
 
-SurfaceCache cache_of(const py::object& cache) {
-    if (cache.is_none() || (py::isinstance<py::bool_>(cache) && cache.cast<bool>()))
-        return SurfaceCache(default_cache_directory());
-    if (py::isinstance<py::bool_>(cache)) return SurfaceCache(std::string());
-    return SurfaceCache(py::str(cache).cast<std::string>());
-}
-
 using Executor = RunResult (*)(const Config&, const RunOptions&);
 
 std::shared_ptr<RunResult> execute(Executor executor, const Config& cfg, int threads,
@@ -43,7 +36,7 @@ std::shared_ptr<RunResult> execute(Executor executor, const Config& cfg, int thr
                                    const std::string& command) {
     RunOptions o;
     o.threads = threads;
-    o.cache = cache_of(cache);
+    o.cache = surface_cache(cache);
     o.command_line = command;
     PendingError error;
     // Called on this thread, between units: the GIL is taken back for Python's signal check.

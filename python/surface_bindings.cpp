@@ -14,12 +14,6 @@
 namespace gonio::python {
 
 namespace {
-struct Surface {
-    HeightField field;
-    GenerationLog log;
-    std::string origin; // "generated", "cache", "loaded", "array"
-};
-
 struct SurfaceMaker {
     CaseRef ref;
 };
@@ -45,11 +39,7 @@ py::dict metrics_of(const Surface& s, const Ndf& ndf, int bins) {
 std::shared_ptr<Surface> generate(const SurfaceMaker& maker, std::optional<int> threads,
                                   const py::object& cache) {
     const CaseConfig& c = *maker.ref.c;
-    SurfaceCache store(std::string{});
-    if (cache.is_none() || (py::isinstance<py::bool_>(cache) && cache.cast<bool>()))
-        store = SurfaceCache(default_cache_directory());
-    else if (!py::isinstance<py::bool_>(cache))
-        store = SurfaceCache(py::str(cache).cast<std::string>());
+    const SurfaceCache store = surface_cache(cache);
     auto s = std::make_shared<Surface>();
     {
         const auto limit = limit_threads(threads.value_or(0));
@@ -66,8 +56,9 @@ std::shared_ptr<Surface> generate(const SurfaceMaker& maker, std::optional<int> 
 } // namespace
 
 void bind_surface(py::module_& m) {
-    py::class_<Surface, std::shared_ptr<Surface>>(
-        m, "Surface", "A periodic height field: n x n heights, `spacing` apart")
+    py::class_<Surface, std::shared_ptr<Surface>> surface(
+        m, "Surface", "A periodic height field: n x n heights, `spacing` apart");
+    surface
         .def_property_readonly(
             "heights",
             [](const std::shared_ptr<Surface>& s) -> py::array_t<float> {
@@ -105,6 +96,8 @@ void bind_surface(py::module_& m) {
             return "<gonio.Surface " + std::to_string(s.field.n) + "^2, spacing " +
                    py::str(py::float_(s.field.spacing)).cast<std::string>() + ", " + s.origin + ">";
         });
+
+    bind_surface_masking(surface);
 
     py::class_<SurfaceMaker>(m, "SurfaceMaker", "A case's surface, to generate (gonio.surface)")
         .def("generate", &generate, py::arg("threads") = py::none(), py::arg("cache") = py::none(),

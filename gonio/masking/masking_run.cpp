@@ -15,22 +15,28 @@
 
 namespace gonio {
 
-MaskingGrid masking_grid(const CaseConfig& c, const MaskingOptions& o) {
+MaskingGrid masking_grid(const std::vector<double>& theta_i_deg,
+                         const std::vector<double>& phi_i_deg, bool isotropic,
+                         const MaskingOptions& o) {
     MaskingGrid g;
     for (int t = 0; t <= 80; t += 10) g.theta_o_deg.push_back(t);
     g.theta_o_deg.push_back(85), g.theta_o_deg.push_back(89);
-    if (case_is_isotropic(c))
+    if (isotropic)
         g.phi_o_deg = {0};
     else
         for (int p = 0; p < 360; p += 45) g.phi_o_deg.push_back(p);
     g.normal_bins = o.normal_bins;
     g.height_bins = o.height_bins;
-    g.theta_i_deg = c.theta_i_deg;
-    g.phi_i_deg = c.theta_i_deg.empty() ? std::vector<double>{} : c.phi_i_deg;
+    g.theta_i_deg = theta_i_deg;
+    g.phi_i_deg = theta_i_deg.empty() ? std::vector<double>{} : phi_i_deg;
     for (int t = 0; t <= 80; t += 10) g.g2_theta_o_deg.push_back(t);
     g.g2_theta_o_deg.push_back(85);
     for (int p = 0; p < 360; p += 30) g.g2_dphi_deg.push_back(p);
     return g;
+}
+
+MaskingGrid masking_grid(const CaseConfig& c, const MaskingOptions& o) {
+    return masking_grid(c.theta_i_deg, c.phi_i_deg, case_is_isotropic(c), o);
 }
 
 std::vector<CaseMasking> run_masking(const Config& cfg, const MaskingOptions& o) {

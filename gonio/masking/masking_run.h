@@ -33,6 +33,11 @@ struct CaseMasking {
 // an isotropic case, eight for an anisotropic one; G2 at the case's incidences, wo every 10
 // degrees of polar angle (and theta_i itself) and every 30 degrees of azimuth from phi_i.
 MaskingGrid masking_grid(const CaseConfig& c, const MaskingOptions& o);
+// The same grid for any surface: G2 at these incidences (every pair), eight azimuths of w unless
+// `isotropic`.
+MaskingGrid masking_grid(const std::vector<double>& theta_i_deg,
+                         const std::vector<double>& phi_i_deg, bool isotropic,
+                         const MaskingOptions& o);
 
 std::vector<CaseMasking> run_masking(const Config& cfg, const MaskingOptions& o);
 

@@ -92,3 +92,23 @@ def test_errors_are_clear():
         n.D(np.zeros((4, 2)))
     with pytest.raises(ValueError, match="shape"):
         n.G1(np.zeros((4, 3)), np.zeros((5, 3)))
+
+
+def test_values_are_those_of_gonio_ndf(root, cli, tmp_path):
+    # The command's curves (10 significant digits) for every case of the quickstart, which
+    # includes an anisotropic one: the Python Ndf of each case gives the same D and Lambda.
+    import csv
+    config = f"{root}/configs/quickstart.toml"
+    cli("ndf", config, "--csv", str(tmp_path / "ndf.csv"))
+    cases = {c.name: c.ndf for c in gonio.Config.load(config).cases}
+    rows = list(csv.DictReader(open(tmp_path / "ndf.csv")))
+    assert {r["case"] for r in rows} == set(cases)
+    for name, n in cases.items():
+        # (not at 90 degrees: there cos theta is 0 for the command and 6e-17 here)
+        mine = [r for r in rows if r["case"] == name and float(r["theta_deg"]) < 90]
+        theta = np.radians([float(r["theta_deg"]) for r in mine])
+        for phi, suffix in ((0.0, "phi0"), (np.pi / 2, "phi90")):
+            w = directions(theta, np.full_like(theta, phi))
+            for column, values in ((f"D_{suffix}", n.D(w)), (f"lambda_{suffix}", n.Lambda(w))):
+                np.testing.assert_allclose(values, [float(r[column]) for r in mine],
+                                           rtol=1e-9, atol=1e-300, err_msg=f"{name} {column}")
