@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <string>
@@ -33,6 +34,10 @@ struct Vectors {
     int width = 3;
 };
 Vectors vectors(const py::handle& h, int width, const char* what);
+// Directions, normalised (finite and not zero; with `upper`, above the surface: z > 0), and
+// uniforms in [0, 1] (1 taken as the largest double below it): ValueError naming `what` otherwise.
+Vectors directions(const py::handle& h, const char* what, bool upper = false);
+Vectors uniforms(const py::handle& h, int width, const char* what);
 
 // The common count and leading shape of several arrays of vectors: each has the same leading
 // shape or is a single vector (broadcast). Throws ValueError naming `what` otherwise.
@@ -44,6 +49,12 @@ Doubles new_array(const std::vector<py::ssize_t>& leading, const std::vector<py:
 
 // The `cache` argument: None or True the command's default directory, False none, else a path.
 SurfaceCache surface_cache(const py::object& cache);
+// `threads`: None or 0 every core, else 1 to 1024 (ValueError otherwise).
+int thread_count(std::optional<int> threads);
+// A str or os.PathLike as a path.
+std::string path_of(const py::handle& path);
+// A polar angle of incidence in degrees, checked to lie in [0, 90) (ValueError naming `what`).
+double polar_angle(double theta_deg, const char* what);
 
 // A case of a config: the Python object keeps its config alive.
 struct CaseRef {

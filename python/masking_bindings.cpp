@@ -9,6 +9,7 @@
 #include "heightfield/ndf/ndf_table.h"
 #include "heightfield/ndf/tabulated_ndf.h"
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <pybind11/stl.h>
@@ -32,7 +33,7 @@ MaskingOptions options_of(long long points, long long g2_points, int normal_bins
     o.g2_points = g2_points;
     o.normal_bins = normal_bins;
     o.height_bins = height_bins;
-    o.threads = threads.value_or(0);
+    o.threads = thread_count(threads);
     return o;
 }
 
@@ -101,6 +102,9 @@ void bind_surface_masking(py::class_<Surface, std::shared_ptr<Surface>>& surface
            const std::string& backend) {
             const MaskingOptions o =
                 options_of(points, g2_points, normal_bins, height_bins, threads);
+            for (double t : theta_i) polar_angle(t, "masking(theta_i)");
+            for (double p : phi_i)
+                if (!std::isfinite(p)) throw py::value_error("masking(phi_i): not finite");
             const MaskingGrid grid = masking_grid(theta_i, phi_i, isotropic, o);
             const TraceBackendKind& kind =
                 backend.empty() ? default_trace_backend() : trace_backend_named(backend);
@@ -132,9 +136,10 @@ void bind_masking(py::module_& m) {
                                })
         .def(
             "write",
-            [](const MaskingResult& r, const std::string& path, bool overwrite) {
+            [](const MaskingResult& r, const py::object& path, bool overwrite) {
+                const std::string file = path_of(path);
                 py::gil_scoped_release release;
-                write_masking_file(path, overwrite, *r.config, "gonio.masking", r.options, r.cases);
+                write_masking_file(file, overwrite, *r.config, "gonio.masking", r.options, r.cases);
             },
             py::arg("path"), py::arg("overwrite") = false,
             "Writes the HDF5 file `gonio masking` would write (format gonio-masking 1)");

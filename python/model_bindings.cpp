@@ -6,6 +6,7 @@
 #include "gonio/model/microfacet_model.h"
 #include "sensor/beckers_sensor.h"
 
+#include <cmath>
 #include <pybind11/stl.h>
 
 namespace gonio::python {
@@ -29,7 +30,7 @@ ModelL1 model_of(const CaseRef& r) {
 
 // f(i, o) (or f cos theta_o) per channel, broadcast over the arrays of directions.
 Doubles evaluate(const ModelL1& m, const py::handle& wi, const py::handle& wo, bool cosine) {
-    const Vectors a = vectors(wi, 3, "eval(wi, wo)"), b = vectors(wo, 3, "eval(wi, wo)");
+    const Vectors a = directions(wi, "eval(wi, wo)"), b = directions(wo, "eval(wi, wo)");
     py::ssize_t count = 0;
     const int channels = m.model.channels();
     Doubles out = new_array(broadcast({&a, &b}, count, "eval(wi, wo)"), {channels});
@@ -66,6 +67,11 @@ void bind_models(py::module_& m) {
         .def(
             "cells",
             [](const ModelL1& l, double theta_i, double phi_i, std::optional<int> cells) {
+                polar_angle(theta_i, "cells(theta_i)");
+                if (!std::isfinite(phi_i)) throw py::value_error("cells(phi_i): not finite");
+                if (cells && (*cells < 1 || *cells > 1000000))
+                    throw py::value_error("cells: " + std::to_string(*cells) +
+                                          " (allowed: 1 to 10^6)");
                 const BeckersSensor sensor(cells.value_or(l.ref.c->sensor_cells));
                 const Vec3 wi = spherical_direction(radians(theta_i), radians(phi_i));
                 std::vector<double> energy;

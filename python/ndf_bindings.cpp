@@ -20,7 +20,7 @@ void each(py::ssize_t count, F f) {
 // A scalar per direction.
 template <class F>
 Doubles per_direction(const py::handle& w, const char* what, F f) {
-    const Vectors v = vectors(w, 3, what);
+    const Vectors v = directions(w, what);
     Doubles out = new_array(v.leading, {});
     double* o = out.mutable_data();
     each(v.count, [&](py::ssize_t k) { o[k] = f(vec3(v.at(k))); });
@@ -30,7 +30,7 @@ Doubles per_direction(const py::handle& w, const char* what, F f) {
 // A scalar per pair (or triple) of directions, broadcast.
 template <class F>
 Doubles per_pair(const py::handle& a, const py::handle& b, const char* what, F f) {
-    const Vectors va = vectors(a, 3, what), vb = vectors(b, 3, what);
+    const Vectors va = directions(a, what), vb = directions(b, what);
     py::ssize_t count = 0;
     Doubles out = new_array(broadcast({&va, &vb}, count, what), {});
     double* o = out.mutable_data();
@@ -85,8 +85,8 @@ void bind_ndf(py::module_& m) {
             [](const Ndf& n, const py::handle& wi, const py::handle& wo, const py::handle& m,
                const std::string& masking) {
                 const MaskingForm form = enum_named<MaskingForm>(masking);
-                const Vectors a = vectors(wi, 3, "G2(wi, wo, m)"), b = vectors(wo, 3, "G2"),
-                              c = vectors(m, 3, "G2");
+                const Vectors a = directions(wi, "G2(wi, wo, m)"), b = directions(wo, "G2"),
+                              c = directions(m, "G2");
                 py::ssize_t count = 0;
                 Doubles out = new_array(broadcast({&a, &b, &c}, count, "G2(wi, wo, m)"), {});
                 double* o = out.mutable_data();
@@ -115,7 +115,7 @@ void bind_ndf(py::module_& m) {
         .def(
             "sample",
             [](const Ndf& n, const py::handle& u) {
-                const Vectors uv = vectors(u, 2, "sample(u)");
+                const Vectors uv = uniforms(u, 2, "sample(u)");
                 Doubles out = new_array(uv.leading, {3});
                 double* o = out.mutable_data();
                 each(uv.count, [&](py::ssize_t k) {
@@ -128,8 +128,8 @@ void bind_ndf(py::module_& m) {
         .def(
             "sample_visible",
             [](const Ndf& n, const py::handle& w, const py::handle& u) {
-                const Vectors wv = vectors(w, 3, "sample_visible(w, u)"),
-                              uv = vectors(u, 2, "sample_visible(w, u)");
+                const Vectors wv = directions(w, "sample_visible(w, u)", true),
+                              uv = uniforms(u, 2, "sample_visible(w, u)");
                 py::ssize_t count = 0;
                 Doubles out = new_array(broadcast({&wv, &uv}, count, "sample_visible(w, u)"), {3});
                 double* o = out.mutable_data();

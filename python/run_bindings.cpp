@@ -97,9 +97,10 @@ void bind_run(py::module_& m) {
         .def_readonly("simulated", &RunResult::simulated, "traced (run) or models only (model)")
         .def(
             "write",
-            [](const RunResult& r, const std::string& path, bool overwrite) {
+            [](const RunResult& r, const py::object& path, bool overwrite) {
+                const std::string file = path_of(path);
                 py::gil_scoped_release release;
-                write_result_file(r, path, overwrite);
+                write_result_file(r, file, overwrite);
             },
             py::arg("path"), py::arg("overwrite") = false,
             "Writes the HDF5 file `gonio run` would write (under a temporary name, renamed when "
@@ -111,7 +112,7 @@ void bind_run(py::module_& m) {
         [](const Config& cfg, std::optional<int> threads, const py::object& progress,
            const py::object& cache) {
             cfg.require_beam("gonio.run");
-            return execute(&run_all, cfg, threads.value_or(0), progress, cache, "gonio.run");
+            return execute(&run_all, cfg, thread_count(threads), progress, cache, "gonio.run");
         },
         py::arg("config"), py::arg("threads") = py::none(), py::arg("progress") = py::none(),
         py::arg("cache") = py::none(), threads_doc);
@@ -119,7 +120,7 @@ void bind_run(py::module_& m) {
         "_model",
         [](const Config& cfg, std::optional<int> threads, const py::object& progress,
            const py::object& cache) {
-            return execute(&run_models, cfg, threads.value_or(0), progress, cache, "gonio.model");
+            return execute(&run_models, cfg, thread_count(threads), progress, cache, "gonio.model");
         },
         py::arg("config"), py::arg("threads") = py::none(), py::arg("progress") = py::none(),
         py::arg("cache") = py::none(), threads_doc);

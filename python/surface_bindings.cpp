@@ -42,12 +42,12 @@ std::shared_ptr<Surface> generate(const SurfaceMaker& maker, std::optional<int> 
     const SurfaceCache store = surface_cache(cache);
     auto s = std::make_shared<Surface>();
     {
-        const auto limit = limit_threads(threads.value_or(0));
+        const auto limit = limit_threads(thread_count(threads));
         py::gil_scoped_release release;
         SurfaceOrigin origin;
         // Realisation 0: the surface `gonio run` traces first (the only one without an ensemble).
         s->field = obtain_surface(*c.ndf, realisation(c.surface, 0), store,
-                                  worker_threads(threads.value_or(0)), origin);
+                                  worker_threads(thread_count(threads)), origin);
         s->log = origin.log;
         s->origin = origin.loaded ? "loaded" : origin.from_cache ? "cache" : "generated";
     }
@@ -64,11 +64,14 @@ void bind_surface(py::module_& m) {
             [](const std::shared_ptr<Surface>& s) -> py::array_t<float> {
                 const py::ssize_t n = s->field.n, size = sizeof(float);
                 // The surface's own memory: the array keeps the Surface alive.
-                return py::array_t<float>(std::vector<py::ssize_t>{n, n},
-                                          std::vector<py::ssize_t>{n * size, size},
-                                          s->field.h.data(), py::cast(s));
+                py::array_t<float> view(std::vector<py::ssize_t>{n, n},
+                                        std::vector<py::ssize_t>{n * size, size}, s->field.h.data(),
+                                        py::cast(s));
+                // Read-only: the surface's metrics and traversals rely on its heights as made.
+                view.attr("setflags")(py::arg("write") = false);
+                return view;
             },
-            "heights[y, x], float32, sharing the surface's memory (no copy)")
+            "heights[y, x], float32, a read-only view of the surface's memory (no copy)")
         .def_property_readonly("n", [](const Surface& s) { return s.field.n; })
         .def_property_readonly("spacing", [](const Surface& s) { return s.field.spacing; })
         .def_property_readonly(
@@ -108,8 +111,11 @@ void bind_surface(py::module_& m) {
         "The surface of a case (gonio.Config.cases[k]): .generate() makes it");
     m.def(
         "surface_from_array",
-        [](const py::array_t<float, py::array::c_style | py::array::forcecast>& heights,
-           double spacing) {
+        [](const py::handle& values, double spacing) {
+            using Floats = py::array_t<float, py::array::c_style | py::array::forcecast>;
+            const Floats heights = Floats::ensure(values);
+            if (!heights)
+                throw py::type_error("surface_from_array: heights must be an array of numbers");
             if (heights.ndim() != 2 || heights.shape(0) != heights.shape(1) || heights.shape(0) < 2)
                 throw py::value_error("surface_from_array: a square array of heights of shape "
                                       "(n, n), n >= 2, is needed");

@@ -17,7 +17,7 @@ namespace {
 template <class F>
 Doubles per_pair_channels(const BsdfTable& t, const py::handle& wi, const py::handle& wo,
                           const char* what, F f) {
-    const Vectors a = vectors(wi, 3, what), b = vectors(wo, 3, what);
+    const Vectors a = directions(wi, what), b = directions(wo, what);
     py::ssize_t count = 0;
     const int channels = t.channels();
     Doubles out = new_array(broadcast({&a, &b}, count, what), {channels});
@@ -25,12 +25,6 @@ Doubles per_pair_channels(const BsdfTable& t, const py::handle& wi, const py::ha
     py::gil_scoped_release release;
     for (py::ssize_t k = 0; k < count; ++k) f(vec3(a.at(k)), vec3(b.at(k)), o + k * channels);
     return out;
-}
-
-void require_upper(const Vectors& wi, const char* what) {
-    for (py::ssize_t k = 0; k < wi.count; ++k)
-        if (!(wi.at(k)[2] > 0))
-            throw py::value_error(std::string(what) + ": wi must lie above the surface (z > 0)");
 }
 
 std::shared_ptr<BsdfTable> from_result(const std::string& path, const std::string& case_name,
@@ -59,7 +53,7 @@ void bind_table(py::module_& m) {
         .def(
             "eval",
             [](const BsdfTable& t, const py::handle& wi, const py::handle& wo) {
-                require_upper(vectors(wi, 3, "eval(wi, wo)"), "eval(wi, wo)");
+                directions(wi, "eval(wi, wo)", true); // wi above the surface
                 return per_pair_channels(
                     t, wi, wo, "eval(wi, wo)",
                     [&](const Vec3& i, const Vec3& o, double* f) { t.eval(i, o, f); });
@@ -70,8 +64,8 @@ void bind_table(py::module_& m) {
         .def(
             "pdf",
             [](const BsdfTable& t, const py::handle& wi, const py::handle& wo) {
-                const Vectors a = vectors(wi, 3, "pdf(wi, wo)"), b = vectors(wo, 3, "pdf(wi, wo)");
-                require_upper(a, "pdf(wi, wo)");
+                const Vectors a = directions(wi, "pdf(wi, wo)", true),
+                              b = directions(wo, "pdf(wi, wo)");
                 py::ssize_t count = 0;
                 Doubles out = new_array(broadcast({&a, &b}, count, "pdf(wi, wo)"), {});
                 double* o = out.mutable_data();
@@ -85,9 +79,8 @@ void bind_table(py::module_& m) {
         .def(
             "sample",
             [](const BsdfTable& t, const py::handle& wi, const py::handle& u) {
-                const Vectors a = vectors(wi, 3, "sample(wi, u)"),
-                              b = vectors(u, 3, "sample(wi, u)");
-                require_upper(a, "sample(wi, u)");
+                const Vectors a = directions(wi, "sample(wi, u)", true),
+                              b = uniforms(u, 3, "sample(wi, u)");
                 py::ssize_t count = 0;
                 const auto leading = broadcast({&a, &b}, count, "sample(wi, u)");
                 Doubles wo = new_array(leading, {3}), pdf = new_array(leading, {});
@@ -110,8 +103,7 @@ void bind_table(py::module_& m) {
         .def(
             "albedo",
             [](const BsdfTable& t, const py::handle& wi) {
-                const Vectors a = vectors(wi, 3, "albedo(wi)");
-                require_upper(a, "albedo(wi)");
+                const Vectors a = directions(wi, "albedo(wi)", true);
                 Doubles out = new_array(a.leading, {t.channels()});
                 double* o = out.mutable_data();
                 py::gil_scoped_release release;

@@ -47,11 +47,13 @@ def _toml_value(v, key):
             return "nan"
         if math.isinf(v):
             return "inf" if v > 0 else "-inf"
-        return repr(v)
+        return repr(float(v))  # numpy 2 floats repr as np.float64(...)
     if isinstance(v, str):
-        return json.dumps(v)  # a TOML basic string: JSON's escapes are TOML's
+        # A TOML basic string: JSON's escapes are TOML's (characters beyond the BMP as they are).
+        return json.dumps(v, ensure_ascii=False)
     if isinstance(v, dict):
-        return "{" + ", ".join(f"{k} = {_toml_value(x, key)}" for k, x in v.items()) + "}"
+        return "{" + ", ".join(f"{_toml_key(k)} = {_toml_value(x, key)}"
+                               for k, x in v.items()) + "}"
     if hasattr(v, "tolist"):  # numpy arrays and scalars
         return _toml_value(v.tolist(), key)
     if isinstance(v, (list, tuple)):
@@ -59,19 +61,31 @@ def _toml_value(v, key):
     raise TypeError(f"{key}: {type(v).__name__} is not a TOML value")
 
 
+def _toml_key(k):
+    k = str(k)
+    return k if k and all(c.isascii() and (c.isalnum() or c in "_-") for c in k) else \
+        json.dumps(k, ensure_ascii=False)
+
+
 def _assignments(overrides):
+    """{key: value} as `--set` assignments; a list of "key=value" strings is taken as it is."""
     if not overrides:
         return []
-    return [f"{k}={_toml_value(v, k)}" for k, v in dict(overrides).items()]
+    if isinstance(overrides, (list, tuple)) and all(isinstance(o, str) for o in overrides):
+        return list(overrides)
+    if not isinstance(overrides, Mapping):
+        raise TypeError("overrides: a mapping {key: value} or a list of 'key=value' strings")
+    return [f"{k}={_toml_value(v, k)}" for k, v in overrides.items()]
 
 
-def _load(path: str | os.PathLike[str], overrides: Mapping[str, Any] | None = None) -> Config:
-    """Reads and validates a config; `overrides` maps keys ("trace.rays", "case.1.ndf.alpha")
+def _load(path: str | os.PathLike[str],
+          overrides: Mapping[str, Any] | Sequence[str] | None = None) -> Config:
+    """Reads and validates a config; `overrides` maps keys ("trace.rays", "case.0.ndf.alpha")
     to values, as `gonio run --set` does. Raises gonio.ConfigError."""
     return Config._load(os.fspath(path), _assignments(overrides))
 
 
-def _from_toml(text: str, overrides: Mapping[str, Any] | None = None,
+def _from_toml(text: str, overrides: Mapping[str, Any] | Sequence[str] | None = None,
                path: str = "<string>") -> Config:
     """A config from TOML text (relative paths in it are taken from the working directory)."""
     return Config._parse(text, path, _assignments(overrides))

@@ -91,7 +91,7 @@ def test_errors_are_clear():
     with pytest.raises(ValueError, match=r"\(\.\.\., 3\)"):
         n.D(np.zeros((4, 2)))
     with pytest.raises(ValueError, match="shape"):
-        n.G1(np.zeros((4, 3)), np.zeros((5, 3)))
+        n.G1(np.ones((4, 3)), np.ones((5, 3)))
 
 
 def test_values_are_those_of_gonio_ndf(root, cli, tmp_path):
