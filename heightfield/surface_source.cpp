@@ -1,9 +1,13 @@
 #include "heightfield/surface_source.h"
 
 #include "gonio_version.h"
+#include "heightfield/measured/map_preparation.h"
+#include "heightfield/measured/measured_map.h"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
+#include <stdexcept>
 
 namespace gonio {
 
@@ -63,11 +67,38 @@ ExrAttributes surface_attributes(const Ndf& ndf, const SurfaceSpec& spec,
     return a;
 }
 
+HeightField read_input_map(const SurfaceSpec& spec, std::vector<std::string>& report) {
+    const MeasuredFormat& format = measured_format_of(spec.input);
+    const bool exr = &format == &exr_map_format();
+    // OpenEXR maps (gonio's own among them) are read exactly as stored unless asked otherwise.
+    if (exr && !spec.prepare_asked) return read_height_exr(spec.input);
+    MeasuredMap map = format.read(spec.input, {spec.input_spacing, spec.input_checksums});
+    map.format = format.name;
+    MapPreparation p;
+    p.level = spec.level == "auto" ? (exr ? Levelling::none : Levelling::plane)
+                                   : enum_named<Levelling>(spec.level);
+    p.spikes = spec.spikes >= 0 ? spec.spikes : exr ? 0.0 : 20.0;
+    p.max_missing = spec.max_missing;
+    PreparedMap prepared = prepare_measured_map(map, p, spec.input);
+    char text[256];
+    std::snprintf(text, sizeof text, "read: %s, %d x %d points, spacing %.6g x %.6g %s (%s)",
+                  format.name, map.nx, map.ny, map.dx, map.dy,
+                  map.unit.empty() ? "(unitless)" : map.unit.c_str(), map.note.c_str());
+    report.push_back(text);
+    std::snprintf(text, sizeof text, "missing: %.3g %% of the points",
+                  100 * prepared.missing_share);
+    report.push_back(text);
+    report.insert(report.end(), prepared.report.begin(), prepared.report.end());
+    if (const std::string why = height_map_problem(prepared.surface); !why.empty())
+        throw std::runtime_error(spec.input + ": " + why);
+    return std::move(prepared.surface);
+}
+
 HeightField obtain_surface(const Ndf& ndf, const SurfaceSpec& spec, const SurfaceCache& cache,
                            int threads, SurfaceOrigin& origin, const ProgressFn& progress) {
     origin = SurfaceOrigin{};
     if (!spec.input.empty()) {
-        HeightField s = read_height_exr(spec.input);
+        HeightField s = read_input_map(spec, origin.preparation);
         origin.loaded = true;
         const double ratio = seam_ratio(s);
         if (ratio > 3.0) {

@@ -5,22 +5,30 @@
 #include "heightfield/surface_cache.h"
 
 #include <string>
+#include <vector>
 
 namespace gonio {
 
 struct SurfaceOrigin {
     bool from_cache = false;
     bool generated = false;
-    bool loaded = false;    // from surface.input
-    std::string cache_path; // where it is (or was stored) in the cache, if enabled
-    std::string edges;      // loaded maps: how the edges were handled
-    std::string warning;    // e.g. a non-periodic measured map
-    GenerationLog log;      // when generated, or as stored with a cached surface
+    bool loaded = false;                  // from surface.input
+    std::string cache_path;               // where it is (or was stored) in the cache, if enabled
+    std::string edges;                    // loaded maps: how the edges were handled
+    std::string warning;                  // e.g. a non-periodic measured map
+    std::vector<std::string> preparation; // loaded maps: what was read and done to them
+    GenerationLog log;                    // when generated, or as stored with a cached surface
 };
 
 // Gets the surface of (ndf, spec), through `cache` when enabled.
 HeightField obtain_surface(const Ndf& ndf, const SurfaceSpec& spec, const SurfaceCache& cache,
                            int threads, SurfaceOrigin& origin, const ProgressFn& progress = {});
+
+// The measured map of spec.input (any format of measured/measured_map.h), prepared as the
+// surface keys ask (measured/map_preparation.h), with a line per step in `report`. OpenEXR maps
+// are read exactly as stored unless a preparation key is given. Throws std::runtime_error naming
+// the file.
+HeightField read_input_map(const SurfaceSpec& spec, std::vector<std::string>& report);
 
 // Seam discontinuity of a height map over its interior step: ~1 for periodic maps.
 double seam_ratio(const HeightField& s);

@@ -12,7 +12,8 @@ const Key& generator_key() {
     static const Key key = [] {
         std::vector<std::string> names;
         for (const SurfaceGenerator* g : surface_generators()) names.push_back(g->name);
-        return Key::string("generator", names, "how the microsurface is made (docs/microsurfaces.md)")
+        return Key::string("generator", names,
+                           "how the microsurface is made (docs/microsurfaces.md)")
             .fallback(default_generator()->name);
     }();
     return key;
@@ -31,6 +32,27 @@ const Key kInput =
               "a measured height map instead of generation (square, one channel Y/Z/H/R), "
               "or a normal map (R, G, B = the unit normal) integrated by Frankot-Chellappa")
         .note_default("—");
+// A measured map's preparation (heightfield/measured/map_preparation.h, docs/measured-surfaces.md).
+const Key kLevel = Key::string("level", {"auto", "none", "plane", "quadratic", "cubic"},
+                               "input maps: least-squares form removed (auto: a plane for "
+                               "third-party formats, none for OpenEXR maps)")
+                       .fallback("auto");
+const Key kSpikes = Key::number("spikes", {0, 1e6},
+                                "input maps: points farther than this many robust sigmas from "
+                                "their 3x3 median are spikes, removed and filled (0: none)")
+                        .note_default("20 (0 for OpenEXR maps)");
+const Key kMaxMissing = Key::number("max_missing", {0, 0.9},
+                                    "input maps: the largest share of missing points (spikes "
+                                    "included) filled by interpolation; more is refused")
+                            .fallback(0.05);
+const Key kInputSpacing = Key::number("input_spacing", {1e-9, 1e9, true, false},
+                                      "input maps: the spacing of a plain matrix of heights, "
+                                      "micrometres (other formats carry their own)")
+                              .note_default("—");
+const Key kInputChecksums =
+    Key::boolean("input_checksums", "input maps: refuse a file whose checksums (X3P's MD5) "
+                                    "do not match; false reads it anyway")
+        .fallback(true);
 const Key kEdges = Key::string("edges", enum_names<Edges>(),
                                "input maps: keep as is, or tile with mirror images into a periodic "
                                "2n² map")
@@ -72,6 +94,12 @@ SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf, boo
         // A measured map replaces generation: generation keys would be unused.
         s.input = r.path(kInput);
         s.edges = enum_named<Edges>(r.string(kEdges));
+        s.prepare_asked = r.has(kLevel.name) || r.has(kSpikes.name) || r.has(kMaxMissing.name);
+        s.level = r.string(kLevel);
+        s.spikes = r.has(kSpikes.name) ? r.number(kSpikes) : -1;
+        s.max_missing = r.number(kMaxMissing);
+        if (r.has(kInputSpacing.name)) s.input_spacing = r.number(kInputSpacing);
+        s.input_checksums = r.boolean(kInputChecksums);
         s.generator = nullptr;
         if (r.has(kRealisations.name) && r.integer(kRealisations) > 1)
             r.fail(kRealisations.name, "a measured map is one surface: an ensemble needs a "
@@ -96,11 +124,12 @@ SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf, boo
 }
 
 std::vector<KeyGroup> surface_key_groups() {
-    std::vector<KeyGroup> groups{{"surface",
-                                  "",
-                                  "",
-                                  {generator_key(), kSeed, kSize, kSpacing, kInput, kEdges,
-                                   kRealisations, kMaxRealisations}}};
+    std::vector<KeyGroup> groups{
+        {"surface",
+         "",
+         "",
+         {generator_key(), kSeed, kSize, kSpacing, kInput, kEdges, kLevel, kSpikes, kMaxMissing,
+          kInputSpacing, kInputChecksums, kRealisations, kMaxRealisations}}};
     // One group per list of keys; generators sharing a list share its group.
     for (const SurfaceGenerator* g : surface_generators()) {
         KeyGroup* shared = nullptr;

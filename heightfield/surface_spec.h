@@ -58,6 +58,15 @@ struct SurfaceSpec {
     double relief = 0.5;           // domes/holes: feature height over its radius
     std::string input;             // an EXR height map to load instead of generating
     Edges edges = Edges::periodic; // loaded maps
+    // A measured map's preparation (measured/map_preparation.h): `level` auto is a plane for
+    // third-party formats and none for OpenEXR maps, `spikes` < 0 is 20 and 0 likewise; an
+    // OpenEXR map is read exactly as stored unless one of these keys is given.
+    std::string level = "auto";
+    double spikes = -1;
+    double max_missing = 0.05;
+    double input_spacing = 0;    // plain matrices
+    bool input_checksums = true; // refuse files whose checksums fail
+    bool prepare_asked = false;
     // An ensemble: independent surfaces of the same distribution (realisation r has the seed
     // realisation_seed(seed, r)), so that errors include the surfaces' spread.
     int realisations = 1;

@@ -3,6 +3,7 @@
 #include "gonio/cli/command.h"
 #include "gonio/cli/progress.h"
 #include "gonio/config/config.h"
+#include "heightfield/measured/surface_character.h"
 #include "heightfield/surface_metrics.h"
 #include "heightfield/surface_source.h"
 #include "sensor/beckers_sensor.h"
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 
 namespace gonio {
 
@@ -109,10 +111,24 @@ int surface(const CommonOptions& o) {
         const SurfaceMetrics m = measure_surface(surface, *ndf);
         const std::string out = output_for(o, cfg, c);
         ExrAttributes attrs = surface_attributes(*ndf, c.surface, origin.log);
+        std::optional<SurfaceCharacter> character;
         if (origin.loaded) {
             attrs.text["gonio_generator"] = generator_name(c.surface);
             attrs.text["gonio_input"] = c.surface.input;
             attrs.text["gonio_edges"] = origin.edges;
+            std::string steps;
+            for (const std::string& line : origin.preparation)
+                steps += (steps.empty() ? "" : "; ") + line;
+            attrs.text["gonio_preparation"] = steps;
+            // What the measured surface is, in the analytic models' terms.
+            character = characterise_surface(surface);
+            attrs.numbers["gonio_alpha_major"] = character->alpha_major;
+            attrs.numbers["gonio_alpha_minor"] = character->alpha_minor;
+            attrs.numbers["gonio_major_axis_deg"] = character->major_axis_deg;
+            for (const AnalyticFit* f : {&character->ggx, &character->beckmann}) {
+                attrs.numbers["gonio_fit_" + f->family + "_alpha"] = f->alpha;
+                attrs.numbers["gonio_fit_" + f->family + "_distance"] = f->distance;
+            }
         }
         // The fidelity metrics travel with the surface.
         attrs.numbers["gonio_ndf_distance"] = m.ndf_distance;
@@ -139,9 +155,11 @@ int surface(const CommonOptions& o) {
         if (o.quiet) continue;
         std::printf("case %s: %s, %d^2 samples, spacing %g\n", c.name.c_str(),
                     ndf->describe().c_str(), surface.n, surface.spacing);
-        if (origin.loaded)
+        if (origin.loaded) {
             std::printf("  loaded %s (edges %s)\n", c.surface.input.c_str(), origin.edges.c_str());
-        else if (origin.from_cache)
+            for (const std::string& line : origin.preparation)
+                std::printf("    %s\n", line.c_str());
+        } else if (origin.from_cache)
             std::printf("  reused cached surface %s (generated with %s, %d iterations)\n",
                         origin.cache_path.c_str(), generator_name(c.surface),
                         origin.log.iterations);
@@ -167,6 +185,17 @@ int surface(const CommonOptions& o) {
         std::printf("\n  heights: RMS %.4g, range [%.4g, %.4g], correlation length x %.3g y %.3g\n",
                     m.height_rms, m.height_min, m.height_max, m.correlation_length_x,
                     m.correlation_length_y);
+        if (character) {
+            std::printf("  slopes: sqrt(2) RMS %.4f along %.1f deg, %.4f across (anisotropy "
+                        "%.3g)\n",
+                        character->alpha_major, character->major_axis_deg, character->alpha_minor,
+                        character->alpha_minor > 0 ? character->alpha_major / character->alpha_minor
+                                                   : INFINITY);
+            std::printf("  closest analytic NDFs (TV distance): ggx alpha %.4f (%.4f), beckmann "
+                        "alpha %.4f (%.4f): %s\n",
+                        character->ggx.alpha, character->ggx.distance, character->beckmann.alpha,
+                        character->beckmann.distance, character->best().family.c_str());
+        }
         std::printf("  wrote %s, %s, %s, %s\n", out.c_str(), sibling(out, "_normals.exr").c_str(),
                     sibling(out, "_ndf.exr").c_str(), sibling(out, "_ndf.csv").c_str());
     }

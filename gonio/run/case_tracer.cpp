@@ -13,6 +13,16 @@
 
 namespace gonio {
 
+namespace {
+// A measured map in the result: the file, and what was read and done to it.
+std::string loaded_text(const std::string& input, const SurfaceOrigin& origin) {
+    std::string text = input;
+    for (const std::string& step : origin.preparation)
+        text += (step == origin.preparation.front() ? " (" : "; ") + step;
+    return origin.preparation.empty() ? text : text + ")";
+}
+} // namespace
+
 std::uint64_t incidence_stream(const UnitId& u) {
     return (std::uint64_t(u.case_index) << 40) ^ (std::uint64_t(u.theta_index) << 20) ^
            std::uint64_t(u.phi_index);
@@ -99,7 +109,9 @@ class CaseTracer {
         }
         if (!origin.warning.empty() && context_.observer.warn)
             context_.observer.warn(origin.warning);
-        if (r == 0) surface_text_ = origin.loaded ? c_.surface.input : origin.cache_path;
+        if (r == 0)
+            surface_text_ =
+                origin.loaded ? loaded_text(c_.surface.input, origin) : origin.cache_path;
         std::unique_ptr<Scene> scene;
         {
             ScopedPhase t(phases_, Phase::scene);

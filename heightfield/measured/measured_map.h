@@ -1,0 +1,61 @@
+#pragma once
+// Measured height maps as instruments write them, before preparation (map_preparation.h): a
+// rectangular grid of heights with its lateral spacing, missing points as NaN. Each file format
+// is a reader in its own file (x3p_reader.cpp, sdf_reader.cpp, gsf_reader.cpp, matrix_reader.cpp,
+// and gonio's own OpenEXR maps), listed once in measured_formats(); a file's format is chosen by
+// its content (magic bytes), then by its extension.
+#include <string>
+#include <vector>
+
+namespace gonio {
+
+// The one length unit of third-party maps once read: heights and spacings in micrometres.
+inline constexpr const char* kMeasuredUnit = "um";
+
+struct MeasuredMap {
+    int nx = 0, ny = 0;     // columns (x) and rows (y)
+    double dx = 0, dy = 0;  // spacing between samples along x and y
+    std::vector<double> z;  // row-major z[y * nx + x]; NaN where the instrument gave no point
+    std::string format;     // the reader's name
+    std::string unit;       // kMeasuredUnit, or "" for gonio's unitless maps
+    std::string note;       // what the reader found (data type, the file's own units)
+    bool gonio_map = false; // written by gonio (EXR with its attributes): periodic already
+
+    double& at(int x, int y) { return z[size_t(y) * nx + x]; }
+    double at(int x, int y) const { return z[size_t(y) * nx + x]; }
+};
+
+// What a reader needs besides the file: a plain matrix has no spacing of its own.
+struct MeasuredReadOptions {
+    double matrix_spacing = 0;    // surface.input_spacing (micrometres); 0 when not given
+    bool verify_checksums = true; // surface.input_checksums: refuse files whose checksums fail
+};
+
+struct MeasuredFormat {
+    const char* name;
+    const char* summary;
+    std::vector<std::string> extensions; // lower case, with the dot
+    // Whether the file's first bytes are this format's.
+    bool (*recognises)(const std::string& head);
+    // Throws std::runtime_error naming the file and what is wrong.
+    MeasuredMap (*read)(const std::string& path, const MeasuredReadOptions& options);
+};
+
+const std::vector<const MeasuredFormat*>& measured_formats();
+const MeasuredFormat& x3p_format();
+const MeasuredFormat& sdf_format();
+const MeasuredFormat& gsf_format();
+const MeasuredFormat& matrix_format();
+const MeasuredFormat& exr_map_format();
+
+// The format of `path`: by content, then by extension; throws std::runtime_error naming the file
+// and the formats when none fits.
+const MeasuredFormat& measured_format_of(const std::string& path);
+MeasuredMap read_measured_map(const std::string& path, const MeasuredReadOptions& options = {});
+
+// Helpers the readers share. The whole file (throws naming it when unreadable).
+std::string read_file_bytes(const std::string& path);
+// A map's size and spacing checked (positive, finite, at most 2^15 per side) and z sized.
+void check_map_shape(MeasuredMap& m, const std::string& path);
+
+} // namespace gonio

@@ -1,0 +1,287 @@
+// Measured height maps (heightfield/measured/): the readers on files gonio did not write (X3P from
+// x3ptools, the ISO 25178-71 SDF example; tests/data/measured/README.md), damaged files refused,
+// and the preparation steps checked on maps whose answer is known.
+#include "heightfield/exr_io.h"
+#include "heightfield/generate.h"
+#include "heightfield/measured/map_preparation.h"
+#include "heightfield/measured/measured_map.h"
+#include "heightfield/measured/surface_character.h"
+#include "heightfield/ndf/beckmann.h"
+#include "heightfield/ndf/ggx.h"
+#include "heightfield/surface_source.h"
+#include "heightfield/surface_spec.h"
+
+#include <cmath>
+#include <cstring>
+#include <doctest/doctest.h>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+#include <zip.h>
+
+using namespace gonio;
+namespace fs = std::filesystem;
+
+namespace {
+std::string data(const std::string& name) {
+    return std::string(GONIO_SOURCE_DIR) + "/tests/data/measured/" + name;
+}
+
+fs::path scratch() {
+    const fs::path dir = fs::temp_directory_path() / ("gonio_measured_" + std::to_string(getpid()));
+    fs::create_directories(dir);
+    return dir;
+}
+
+void write_bytes(const fs::path& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary) << bytes;
+}
+
+std::string bytes_of(const std::string& path) {
+    return read_file_bytes(path);
+}
+
+// A copy of an X3P archive with one entry replaced.
+void rezip(const std::string& from, const fs::path& to, const std::string& entry,
+           const std::string& contents) {
+    fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+    int error = 0;
+    zip_t* z = zip_open(to.c_str(), 0, &error);
+    REQUIRE(z);
+    zip_source_t* s = zip_source_buffer(z, contents.data(), contents.size(), 0);
+    REQUIRE(zip_file_add(z, entry.c_str(), s, ZIP_FL_OVERWRITE) >= 0);
+    REQUIRE(zip_close(z) == 0);
+}
+
+std::string zip_entry(const std::string& path, const std::string& name) {
+    int error = 0;
+    zip_t* z = zip_open(path.c_str(), ZIP_RDONLY, &error);
+    REQUIRE(z);
+    zip_stat_t st;
+    REQUIRE(zip_stat(z, name.c_str(), 0, &st) == 0);
+    std::string out(st.size, '\0');
+    zip_file_t* f = zip_fopen(z, name.c_str(), 0);
+    REQUIRE(zip_fread(f, out.data(), st.size) == zip_int64_t(st.size));
+    zip_fclose(f);
+    zip_discard(z);
+    return out;
+}
+
+MeasuredMap plane_map(int nx, int ny, double a, double b, double c) {
+    MeasuredMap m;
+    m.nx = nx, m.ny = ny, m.dx = m.dy = 0.5, m.unit = kMeasuredUnit;
+    m.z.resize(size_t(nx) * ny);
+    for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x) m.at(x, y) = a * x + b * y + c;
+    return m;
+}
+} // namespace
+
+TEST_CASE("X3P files of x3ptools read to the points, spacing and heights they state") {
+    // csafe-logo.x3p: 741 x 419 points at 6.45e-07 m (x3ptools' README). Its md5checksum.hex no
+    // longer matches main.xml, so it is refused unless the checksums are waived.
+    CHECK_THROWS_WITH_AS(read_measured_map(data("csafe-logo.x3p")),
+                         doctest::Contains("does not match its MD5 checksum"), std::runtime_error);
+    const MeasuredMap logo = read_measured_map(data("csafe-logo.x3p"), {0, false});
+    CHECK(logo.format == "x3p");
+    CHECK(logo.nx == 741);
+    CHECK(logo.ny == 419);
+    CHECK(logo.dx == doctest::Approx(0.645).epsilon(1e-9)); // micrometres
+    CHECK(logo.dy == doctest::Approx(0.645).epsilon(1e-9));
+
+    // pyramid.x3p: a 5 x 5 stepped pyramid of heights 2, 6, 10 (metres, increment 1 m).
+    const MeasuredMap p = read_measured_map(data("pyramid.x3p"));
+    REQUIRE(p.nx == 5);
+    REQUIRE(p.ny == 5);
+    CHECK(p.dx == 1e6);
+    const double rings[5][5] = {
+        {2, 2, 2, 2, 2}, {2, 6, 6, 6, 2}, {2, 6, 10, 6, 2}, {2, 6, 6, 6, 2}, {2, 2, 2, 2, 2}};
+    for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 5; ++x) CHECK(p.at(x, y) == rings[y][x] * 1e6);
+
+    // testing.x3p: 30 x 20 doubles at an increment of 0.0275 m; its heights are data.bin's.
+    const MeasuredMap t = read_measured_map(data("testing.x3p"));
+    CHECK(t.nx == 30);
+    CHECK(t.ny == 20);
+    CHECK(t.dx == doctest::Approx(27499.9996026357).epsilon(1e-12));
+    const std::string bin = zip_entry(data("testing.x3p"), "bindata/data.bin");
+    for (size_t k = 0; k < t.z.size(); k += 37) {
+        double v;
+        std::memcpy(&v, bin.data() + 8 * k, 8);
+        CHECK(t.z[k] == v * 1e6);
+    }
+}
+
+TEST_CASE("The ISO 25178-71 ASCII example reads to its points and scales") {
+    const MeasuredMap m = read_measured_map(data("iso_25178_71_example.sdf"));
+    CHECK(m.format == "sdf");
+    REQUIRE(m.nx == 7);
+    REQUIRE(m.ny == 4);
+    CHECK(m.dx == doctest::Approx(1.0));
+    CHECK(m.dy == doctest::Approx(1.0));
+    // Values times Zscale 1e-6 m, in micrometres: the first profile and the last point.
+    const double first[7] = {1.00000, 0.99874, 0.99495, 0.98865, 0.97986, 0.96858, 1.00000};
+    for (int x = 0; x < 7; ++x) CHECK(m.at(x, 0) == doctest::Approx(first[x]).epsilon(1e-12));
+    CHECK(m.at(6, 3) == doctest::Approx(0.97986).epsilon(1e-12));
+}
+
+TEST_CASE("Damaged and truncated maps are refused with the file and the reason") {
+    const fs::path dir = scratch();
+    // A truncated X3P: not a zip any more.
+    const std::string x3p = bytes_of(data("testing.x3p"));
+    write_bytes(dir / "cut.x3p", x3p.substr(0, x3p.size() / 2));
+    CHECK_THROWS_WITH_AS(read_measured_map((dir / "cut.x3p").string()),
+                         doctest::Contains("cut.x3p: not a readable X3P"), std::runtime_error);
+    // Point data altered: its MD5 in main.xml fails; short point data is refused.
+    std::string altered = zip_entry(data("testing.x3p"), "bindata/data.bin");
+    altered[100] ^= 1;
+    rezip(data("testing.x3p"), dir / "altered.x3p", "bindata/data.bin", altered);
+    CHECK_THROWS_WITH_AS(read_measured_map((dir / "altered.x3p").string()),
+                         doctest::Contains("bindata/data.bin does not match its MD5"),
+                         std::runtime_error);
+    rezip(data("testing.x3p"), dir / "short.x3p", "bindata/data.bin", altered.substr(0, 800));
+    CHECK_THROWS_WITH_AS(read_measured_map((dir / "short.x3p").string(), {0, false}),
+                         doctest::Contains("holds 800 bytes"), std::runtime_error);
+    // A truncated SDF, and one with a value that is not a number.
+    std::string sdf = bytes_of(data("iso_25178_71_example.sdf"));
+    write_bytes(dir / "cut.sdf", sdf.substr(0, sdf.find("0.97986 0.97862")));
+    CHECK_THROWS_WITH_AS(read_measured_map((dir / "cut.sdf").string()),
+                         doctest::Contains("truncated"), std::runtime_error);
+    std::string bad = sdf;
+    bad.replace(bad.find("0.99874"), 7, "0.9x874");
+    write_bytes(dir / "bad.sdf", bad);
+    CHECK_THROWS_WITH_AS(read_measured_map((dir / "bad.sdf").string()),
+                         doctest::Contains("'0.9x874') is not a number"), std::runtime_error);
+    // Not a height map at all.
+    write_bytes(dir / "notes.bin", "hello");
+    CHECK_THROWS_WITH_AS(read_measured_map((dir / "notes.bin").string()),
+                         doctest::Contains("not a height map gonio reads"), std::runtime_error);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("GSF and binary SDF files as their specifications lay them out, and plain matrices") {
+    const fs::path dir = scratch();
+    // GSF: header, NUL padding to a multiple of 4, float32 rows; XReal in metres.
+    std::string gsf = "Gwyddion Simple Field 1.0\nXRes = 3\nYRes = 2\nXReal = 3e-06\n"
+                      "YReal = 2e-06\nXYUnits = m\nZUnits = m\n";
+    gsf.append(4 - gsf.size() % 4, '\0');
+    const float values[6] = {1e-6f, 2e-6f, NAN, 4e-6f, 5e-6f, 6e-6f};
+    gsf.append(reinterpret_cast<const char*>(values), sizeof values);
+    write_bytes(dir / "map.gsf", gsf);
+    const MeasuredMap g = read_measured_map((dir / "map.gsf").string());
+    CHECK(g.format == "gsf");
+    CHECK(g.nx == 3);
+    CHECK(g.ny == 2);
+    CHECK(g.dx == doctest::Approx(1.0));
+    CHECK(g.at(1, 0) == doctest::Approx(2.0).epsilon(1e-6));
+    CHECK(std::isnan(g.at(2, 0)));
+    write_bytes(dir / "cut.gsf", gsf.substr(0, gsf.size() - 4));
+    CHECK_THROWS_WITH_AS(read_measured_map((dir / "cut.gsf").string()),
+                         doctest::Contains("truncated"), std::runtime_error);
+
+    // Binary SDF: the 81-byte header of ISO 25178-71, then int16 points (-32768 missing).
+    std::string sdf = "bISO-1.0" + std::string(34, ' ');
+    auto put = [&](const void* p, size_t n) { sdf.append(static_cast<const char*>(p), n); };
+    const std::uint16_t points = 2, profiles = 2;
+    const double xs = 2e-6, ys = 2e-6, zs = 1e-9, zr = 1e-9;
+    put(&points, 2), put(&profiles, 2), put(&xs, 8), put(&ys, 8), put(&zs, 8), put(&zr, 8);
+    sdf += std::string{'\0', '\5', '\0'}; // no compression, int16, no checksum
+    const std::int16_t raw[4] = {100, -32768, 300, 400};
+    put(raw, sizeof raw);
+    write_bytes(dir / "map.sdf", sdf);
+    const MeasuredMap b = read_measured_map((dir / "map.sdf").string());
+    CHECK(b.dx == doctest::Approx(2.0));
+    CHECK(b.at(0, 0) == doctest::Approx(0.1)); // 100 x 1e-9 m
+    CHECK(std::isnan(b.at(1, 0)));
+    CHECK(b.at(1, 1) == doctest::Approx(0.4));
+
+    // A plain CSV matrix: its spacing comes from the config, an empty field is missing.
+    write_bytes(dir / "map.csv", "# heights, um\n1,2,3\n4,,6\n");
+    CHECK_THROWS_WITH_AS(read_measured_map((dir / "map.csv").string()),
+                         doctest::Contains("surface.input_spacing"), std::runtime_error);
+    const MeasuredMap c = read_measured_map((dir / "map.csv").string(), {0.25, true});
+    CHECK(c.format == "matrix");
+    CHECK(c.nx == 3);
+    CHECK(c.ny == 2);
+    CHECK(c.dx == 0.25);
+    CHECK(std::isnan(c.at(1, 1)));
+    CHECK(c.at(2, 1) == 6);
+    write_bytes(dir / "ragged.txt", "1 2 3\n4 5\n");
+    CHECK_THROWS_WITH_AS(read_measured_map((dir / "ragged.txt").string(), {1, true}),
+                         doctest::Contains("ragged.txt:2: 2 values; the rows above have 3"),
+                         std::runtime_error);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("Preparation: levelling, filling, spikes and the square cut do what they say") {
+    // A tilted plane with a hole and a spike: levelled to 0 everywhere, the hole filled (a
+    // plane is harmonic, so its interpolation is exact), the spike found.
+    MeasuredMap m = plane_map(40, 30, 0.3, -0.2, 5);
+    for (int y = 10; y < 14; ++y)
+        for (int x = 12; x < 18; ++x) m.at(x, y) = NAN;
+    m.at(30, 20) += 50;
+    MapPreparation p;
+    p.level = Levelling::none;
+    p.spikes = 20;
+    p.max_missing = 0.05;
+    const PreparedMap kept = prepare_measured_map(m, p, "plane");
+    CHECK(kept.missing_share == doctest::Approx(24.0 / 1200));
+    CHECK(kept.spike_share == doctest::Approx(1.0 / 1200));
+    REQUIRE(kept.surface.n == 30); // the centred 30 x 30 square of 40 x 30
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 30; ++x)
+            CHECK(kept.surface.at(x, y) ==
+                  doctest::Approx(0.3 * (x + 5) - 0.2 * y + 5).epsilon(1e-6));
+    p.level = Levelling::plane;
+    const PreparedMap flat = prepare_measured_map(m, p, "plane");
+    for (float h : flat.surface.h) CHECK(std::abs(h) < 1e-4);
+
+    // Too many missing points: refused, naming the key.
+    p.max_missing = 0.01;
+    CHECK_THROWS_WITH_AS(prepare_measured_map(m, p, "plane"),
+                         doctest::Contains("surface.max_missing allows 1 %"), std::runtime_error);
+    // Cells that are not square: refused.
+    MeasuredMap wide = plane_map(8, 8, 0, 0, 0);
+    wide.dy = 0.6;
+    p.max_missing = 0.05;
+    CHECK_THROWS_WITH_AS(prepare_measured_map(wide, p, "wide"), doctest::Contains("not square"),
+                         std::runtime_error);
+}
+
+TEST_CASE("gonio's own OpenEXR maps are read exactly as before unless a key asks") {
+    const fs::path dir = scratch();
+    HeightField s(16, 0.5);
+    for (int k = 0; k < 256; ++k) s.h[k] = float(std::sin(0.37 * k) + 0.01 * k);
+    ExrAttributes a;
+    a.text["gonio_ndf"] = "test";
+    a.numbers["gonio_spacing"] = 0.5;
+    write_height_exr((dir / "own.exr").string(), s, a);
+    SurfaceSpec spec;
+    spec.input = (dir / "own.exr").string();
+    std::vector<std::string> report;
+    const HeightField same = read_input_map(spec, report);
+    CHECK(same.h == read_height_exr(spec.input).h);
+    CHECK(same.spacing == 0.5);
+    CHECK(report.empty());
+    spec.prepare_asked = true, spec.level = "plane";
+    const HeightField levelled = read_input_map(spec, report);
+    CHECK(levelled.h != same.h);
+    CHECK(report.size() >= 2);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("A generated surface's closest analytic distribution is its own family and roughness") {
+    SurfaceSpec spec;
+    spec.size = 128;
+    spec.seed = 9;
+    const Ggx ggx(0.3);
+    const Beckmann beckmann(0.4);
+    const SurfaceCharacter g = characterise_surface(generate_surface(ggx, spec, 2));
+    CHECK(g.best().family == "ggx");
+    CHECK(g.ggx.alpha == doctest::Approx(0.3).epsilon(0.05));
+    const SurfaceCharacter b = characterise_surface(generate_surface(beckmann, spec, 2));
+    CHECK(b.best().family == "beckmann");
+    CHECK(b.beckmann.alpha == doctest::Approx(0.4).epsilon(0.05));
+    // Isotropic: the principal RMS slopes agree to a few per cent.
+    CHECK(b.alpha_major / b.alpha_minor < 1.1);
+}
