@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """A fuzzer of everything gonio reads: the shipped configs, a result file, part files, a
-checkpoint and a height map, each mutated with a fixed seed (bytes flipped, truncated,
+checkpoint, a height map and third-party measured maps (X3P, SDF), each mutated with a fixed seed (bytes flipped, truncated,
 overwritten; values made NaN, negative or out of range; datasets and attributes removed or
 reshaped; keys, tables and numbers of a config garbled) and handed to the command that reads it.
 
@@ -357,6 +357,32 @@ class Fuzzer:
                    d, ["input.toml", "map.exr"], ["o.h5"],
                    lambda out, d=d: self.same_data(pristine, os.path.join(d, "o.h5")))
 
+    def measured_case(self, k):
+        # A third-party map: X3P carries MD5 checksums, so a corruption it accepts must change
+        # nothing gonio reads (the same report); SDF has none, so any outcome but a crash, a
+        # hang, a stray file or a malformed error is fine.
+        d = self.case_dir(k)
+        name = self.rng.choice(["testing.x3p", "pyramid.x3p", "iso_25178_71_example.sdf"])
+        shutil.copy(os.path.join(ROOT, "tests", "data", "measured", name), d)
+        with open(os.path.join(d, "measured.toml"), "w") as f:
+            f.write(f'[surface]\ninput = "{name}"\nmax_missing = 0.9\n[ndf]\ntype = "ggx"\n'
+                    f'alpha = 0.3\n[[case]]\nname = "m"\n')
+        args = ["surface", "measured.toml", "-o", "o.exr", "--no-cache"]
+        report = lambda out: [l for l in out.split("\n") if "loaded" not in l and "wrote" not in l]
+        outputs = ["o.exr", "o_ndf.exr", "o_ndf.csv", "o_normals.exr"]
+        if name.endswith(".x3p"):
+            ref = os.path.join(self.work, "measured_" + name)
+            if not os.path.exists(ref):
+                os.makedirs(ref)
+                shutil.copy(os.path.join(ROOT, "tests", "data", "measured", name), ref)
+                shutil.copy(os.path.join(d, "measured.toml"), ref)
+            self.reference_of(("measured", name), args, ref, report)
+            compare = self.same_output(("measured", name), report)
+        else:
+            compare = lambda out: ""  # noqa: E731
+        what = name + " " + self.mutate_bytes(os.path.join(d, name))
+        self.check("measured", what, args, d, [name, "measured.toml"], outputs, compare)
+
     @staticmethod
     def same_data(pristine, path):
         got = datasets(path)
@@ -377,7 +403,7 @@ def main():
     p.add_argument("--keep", help="copy the failing cases' directories here")
     a = p.parse_args()
     rng = random.Random(a.seed)
-    kinds = ["config"] * 4 + ["result"] * 3 + ["part", "checkpoint", "map"]
+    kinds = ["config"] * 4 + ["result"] * 3 + ["part", "checkpoint", "map", "measured"]
     with tempfile.TemporaryDirectory() as work:
         f = Fuzzer(os.path.abspath(a.gonio), work, rng, a.timeout)
         for k in range(a.cases):

@@ -21,8 +21,8 @@ double micrometres_per(const std::string& unit, const std::string& path, const c
     if (unit == "mm") return 1e3;
     if (unit == "um" || unit == "µm") return 1;
     if (unit == "nm") return 1e-3;
-    throw std::runtime_error(path + ": GSF " + std::string(key) + " '" + unit +
-                             "' is not a length (allowed: m, mm, um, nm)");
+    throw std::runtime_error(path + ": GSF " + std::string(key) + " " + quoted(unit) +
+                             " is not a length (allowed: m, mm, um, nm)");
 }
 
 MeasuredMap read_gsf(const std::string& path, const MeasuredReadOptions&) {
@@ -32,40 +32,18 @@ MeasuredMap read_gsf(const std::string& path, const MeasuredReadOptions&) {
     const size_t nul = bytes.find('\0', kMagic.size());
     if (nul == std::string::npos)
         throw std::runtime_error(path + ": the GSF header is not terminated by NUL bytes");
-    std::map<std::string, std::string> fields;
-    std::istringstream header(bytes.substr(kMagic.size(), nul - kMagic.size()));
-    for (std::string line; std::getline(header, line);) {
-        const size_t eq = line.find('=');
-        if (eq == std::string::npos) continue;
-        auto trim = [](std::string s) {
-            s.erase(0, s.find_first_not_of(" \t\r"));
-            s.erase(s.find_last_not_of(" \t\r") + 1);
-            return s;
-        };
-        fields[trim(line.substr(0, eq))] = trim(line.substr(eq + 1));
-    }
-    auto number = [&](const char* name, double fallback, bool required) {
-        const auto it = fields.find(name);
-        if (it == fields.end()) {
-            if (required)
-                throw std::runtime_error(path + ": the GSF header has no " + std::string(name));
-            return fallback;
-        }
-        char* end = nullptr;
-        const double v = std::strtod(it->second.c_str(), &end);
-        if (end == it->second.c_str() || !std::isfinite(v))
-            throw std::runtime_error(path + ": GSF " + std::string(name) + " is not a number ('" +
-                                     it->second + "')");
-        return v;
+    auto fields = header_fields(bytes.substr(kMagic.size(), nul - kMagic.size()));
+    auto number = [&](const char* name, std::optional<double> fallback) {
+        return header_number(fields, name, path, "GSF", fallback);
     };
     MeasuredMap m;
-    const double xres = number("XRes", 0, true), yres = number("YRes", 0, true);
+    const double xres = number("XRes", {}), yres = number("YRes", {});
     m.nx = int(std::min(std::max(xres, 0.0), 1e9));
     m.ny = int(std::min(std::max(yres, 0.0), 1e9));
     const double lateral = micrometres_per(fields["XYUnits"], path, "XYUnits");
     const double vertical = micrometres_per(fields["ZUnits"], path, "ZUnits");
-    m.dx = m.nx > 0 ? number("XReal", 1, false) / m.nx * lateral : 0;
-    m.dy = m.ny > 0 ? number("YReal", 1, false) / m.ny * lateral : 0;
+    m.dx = m.nx > 0 ? number("XReal", 1.0) / m.nx * lateral : 0;
+    m.dy = m.ny > 0 ? number("YReal", 1.0) / m.ny * lateral : 0;
     check_map_shape(m, path);
     const size_t data = (nul / 4 + 1) * 4; // the padding aligns the data to 4 bytes
     for (size_t k = nul; k < data; ++k)
@@ -82,7 +60,7 @@ MeasuredMap read_gsf(const std::string& path, const MeasuredReadOptions&) {
         m.z[k] = std::isfinite(v) ? double(v) * vertical : NAN;
     }
     m.unit = kMeasuredUnit;
-    m.note = "GSF, XYUnits '" + fields["XYUnits"] + "', ZUnits '" + fields["ZUnits"] +
+    m.note = "GSF, XYUnits " + quoted(fields["XYUnits"]) + ", ZUnits " + quoted(fields["ZUnits"]) +
              "' read as micrometres";
     return m;
 }

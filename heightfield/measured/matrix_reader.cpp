@@ -39,8 +39,8 @@ MeasuredMap read_matrix(const std::string& path, const MeasuredReadOptions& opti
                 char* stop = nullptr;
                 v = std::strtod(token.c_str(), &stop);
                 if (*stop != '\0' || !std::isfinite(v))
-                    throw std::runtime_error(path + ":" + std::to_string(line_number) + ": '" +
-                                             token + "' is not a height");
+                    throw std::runtime_error(path + ":" + std::to_string(line_number) + ": " +
+                                             quoted(token) + " is not a height");
             }
             values.push_back(v);
             ++count;

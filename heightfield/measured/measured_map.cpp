@@ -27,12 +27,54 @@ std::string read_file_bytes(const std::string& path) {
     return bytes;
 }
 
+std::string quoted(const std::string& text) {
+    std::string out = "'";
+    for (size_t k = 0; k < text.size() && k < 40; ++k) {
+        const unsigned char c = static_cast<unsigned char>(text[k]);
+        out += c >= 32 && c < 127 ? char(c) : '?';
+    }
+    return out + (text.size() > 40 ? "...'" : "'");
+}
+
+std::map<std::string, std::string> header_fields(const std::string& text) {
+    auto trim = [](std::string s) {
+        s.erase(0, s.find_first_not_of(" \t\r"));
+        s.erase(s.find_last_not_of(" \t\r") + 1);
+        return s;
+    };
+    std::map<std::string, std::string> fields;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);)
+        if (const size_t eq = line.find('='); eq != std::string::npos)
+            fields[trim(line.substr(0, eq))] = trim(line.substr(eq + 1));
+    return fields;
+}
+
+double header_number(const std::map<std::string, std::string>& fields, const std::string& name,
+                     const std::string& path, const char* format, std::optional<double> fallback) {
+    const auto it = fields.find(name);
+    if (it == fields.end()) {
+        if (fallback) return *fallback;
+        throw std::runtime_error(path + ": the " + format + " header has no " + name);
+    }
+    char* end = nullptr;
+    const double v = std::strtod(it->second.c_str(), &end);
+    if (end == it->second.c_str() || !std::isfinite(v))
+        throw std::runtime_error(path + ": " + format + " " + name + " is not a number (" +
+                                 quoted(it->second) + ")");
+    return v;
+}
+
 void check_map_shape(MeasuredMap& m, const std::string& path) {
     constexpr int kMaxSide = 1 << 15;
     if (m.nx < 2 || m.ny < 2 || m.nx > kMaxSide || m.ny > kMaxSide)
         throw std::runtime_error(path + ": a map of " + std::to_string(m.nx) + " x " +
                                  std::to_string(m.ny) + " points (allowed: 2 to " +
                                  std::to_string(kMaxSide) + " per side)");
+    // At most 2^28 points (a 16384^2 map): a header cannot make gonio allocate more.
+    if (double(m.nx) * m.ny > double(1 << 28))
+        throw std::runtime_error(path + ": " + std::to_string(m.nx) + " x " + std::to_string(m.ny) +
+                                 " points (at most 2^28 are read)");
     for (double d : {m.dx, m.dy})
         if (!(d > 0) || !std::isfinite(d))
             throw std::runtime_error(path + ": the lateral spacing must be finite and > 0");

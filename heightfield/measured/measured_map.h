@@ -4,6 +4,8 @@
 // is a reader in its own file (x3p_reader.cpp, sdf_reader.cpp, gsf_reader.cpp, matrix_reader.cpp,
 // and gonio's own OpenEXR maps), listed once in measured_formats(); a file's format is chosen by
 // its content (magic bytes), then by its extension.
+#include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +57,15 @@ MeasuredMap read_measured_map(const std::string& path, const MeasuredReadOptions
 
 // Helpers the readers share. The whole file (throws naming it when unreadable).
 std::string read_file_bytes(const std::string& path);
+// Text from a file, fit to quote in a message: quoted, control and non-ASCII bytes as '?', at
+// most 40 characters.
+std::string quoted(const std::string& text);
+// "name = value" lines (the SDF and GSF headers): names and values trimmed.
+std::map<std::string, std::string> header_fields(const std::string& text);
+// A header field as a finite number: `fallback` when absent, else an error naming the file.
+double header_number(const std::map<std::string, std::string>& fields, const std::string& name,
+                     const std::string& path, const char* format,
+                     std::optional<double> fallback = std::nullopt);
 // A map's size and spacing checked (positive, finite, at most 2^15 per side) and z sized.
 void check_map_shape(MeasuredMap& m, const std::string& path);
 

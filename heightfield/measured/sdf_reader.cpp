@@ -4,6 +4,7 @@
 // (integers) or NaN (doubles) in binary ones.
 #include "heightfield/measured/measured_map.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -52,35 +53,17 @@ MeasuredMap read_ascii(const std::string& path, const std::string& bytes) {
     const size_t header_end = bytes.find('*');
     if (header_end == std::string::npos)
         throw std::runtime_error(path + ": an SDF header ends with '*'; none found");
-    std::map<std::string, std::string> fields;
-    std::istringstream header(bytes.substr(8, header_end - 8));
-    for (std::string line; std::getline(header, line);) {
-        const size_t eq = line.find('=');
-        if (eq == std::string::npos) continue;
-        auto trim = [](std::string s) {
-            s.erase(0, s.find_first_not_of(" \t\r"));
-            s.erase(s.find_last_not_of(" \t\r") + 1);
-            return s;
-        };
-        fields[trim(line.substr(0, eq))] = trim(line.substr(eq + 1));
-    }
-    auto field = [&](const char* name) -> double {
-        const auto it = fields.find(name);
-        if (it == fields.end())
-            throw std::runtime_error(path + ": the SDF header has no " + std::string(name));
-        char* end = nullptr;
-        const double v = std::strtod(it->second.c_str(), &end);
-        if (end == it->second.c_str() || !std::isfinite(v))
-            throw std::runtime_error(path + ": SDF " + std::string(name) + " is not a number ('" +
-                                     it->second + "')");
-        return v;
-    };
+    const auto fields = header_fields(bytes.substr(8, header_end - 8));
+    auto field = [&](const char* name) { return header_number(fields, name, path, "SDF"); };
+    // Counts clamped, so that an absurd value cannot overflow a conversion: it is refused below.
+    auto count = [&](const char* name) { return std::clamp(field(name), -1.0, 1e9); };
     SdfHeader h;
-    h.points = (long long)field("NumPoints");
-    h.profiles = (long long)field("NumProfiles");
+    h.points = (long long)count("NumPoints");
+    h.profiles = (long long)count("NumProfiles");
     h.xscale = field("Xscale"), h.yscale = field("Yscale"), h.zscale = field("Zscale");
-    h.data_type = int(field("DataType"));
-    h.compression = fields.count("Compression") ? int(field("Compression")) : 0;
+    h.data_type = int(count("DataType"));
+    h.compression =
+        int(std::clamp(header_number(fields, "Compression", path, "SDF", 0.0), -1.0, 1e9));
     width_of(h.data_type, path); // a known type, though ASCII values are read as numbers
     MeasuredMap m = shaped(h, path);
     const size_t data_end = bytes.find('*', header_end + 1);
@@ -99,8 +82,8 @@ MeasuredMap read_ascii(const std::string& path, const std::string& bytes) {
         char* end = nullptr;
         const double v = std::strtod(token.c_str(), &end);
         if (*end != '\0' || !std::isfinite(v))
-            throw std::runtime_error(path + ": value " + std::to_string(k + 1) + " ('" + token +
-                                     "') is not a number");
+            throw std::runtime_error(path + ": value " + std::to_string(k + 1) + " (" +
+                                     quoted(token) + ") is not a number");
         m.z[k] = v * h.zscale * kMetresToUnit;
     }
     if (k != m.z.size())

@@ -69,16 +69,17 @@ class Archive {
     std::string read(const std::string& name, zip_uint64_t limit) const {
         zip_stat_t st;
         if (zip_stat(zip_, name.c_str(), 0, &st) != 0)
-            throw std::runtime_error(path_ + ": the archive has no " + name);
+            throw std::runtime_error(path_ + ": the archive has no " + quoted(name));
         if (st.size > limit)
-            throw std::runtime_error(path_ + ": " + name + " is larger than expected (" +
+            throw std::runtime_error(path_ + ": " + quoted(name) + " is larger than expected (" +
                                      std::to_string(st.size) + " bytes)");
         std::unique_ptr<zip_file_t, int (*)(zip_file_t*)> f(zip_fopen(zip_, name.c_str(), 0),
                                                             &zip_fclose);
-        if (!f) throw std::runtime_error(path_ + ": cannot open " + name + " in the archive");
+        if (!f)
+            throw std::runtime_error(path_ + ": cannot open " + quoted(name) + " in the archive");
         std::string bytes(size_t(st.size), '\0');
         if (zip_fread(f.get(), bytes.data(), st.size) != zip_int64_t(st.size))
-            throw std::runtime_error(path_ + ": " + name + " is truncated or corrupt");
+            throw std::runtime_error(path_ + ": " + quoted(name) + " is truncated or corrupt");
         return bytes;
     }
 
@@ -101,7 +102,7 @@ double number(const pugi::xml_node& node, const char* child, const std::string& 
     const double v = std::strtod(text.c_str(), &end);
     if (end == text.c_str() || !std::isfinite(v))
         throw std::runtime_error(path + ": main.xml's " + std::string(node.name()) + "/" + child +
-                                 " is not a number ('" + text + "')");
+                                 " is not a number (" + quoted(text) + ")");
     return v;
 }
 
@@ -135,8 +136,8 @@ MeasuredMap read_x3p(const std::string& path, const MeasuredReadOptions& options
     if (!r1 || !r3) throw std::runtime_error(path + ": main.xml needs Record1 and Record3");
     const std::string feature = r1.child("FeatureType").text().as_string();
     if (feature != "SUR")
-        throw std::runtime_error(path + ": feature type '" + feature +
-                                 "' (gonio reads areal surfaces, SUR)");
+        throw std::runtime_error(path + ": feature type " + quoted(feature) +
+                                 " (gonio reads areal surfaces, SUR)");
     const pugi::xml_node axes = r1.child("Axes");
     const pugi::xml_node cx = axes.child("CX"), cy = axes.child("CY"), cz = axes.child("CZ");
     if (!cx || !cy || !cz) throw std::runtime_error(path + ": main.xml needs axes CX, CY, CZ");
@@ -164,7 +165,8 @@ MeasuredMap read_x3p(const std::string& path, const MeasuredReadOptions& options
     else if (type == "D")
         width = 8;
     else
-        throw std::runtime_error(path + ": CZ data type '" + type + "' (allowed: I, L, F, D)");
+        throw std::runtime_error(path + ": CZ data type " + quoted(type) +
+                                 " (allowed: I, L, F, D)");
     const pugi::xml_node link = r3.child("DataLink");
     const std::string data_name = link.child("PointDataLink").text().as_string();
     if (data_name.empty())
@@ -173,15 +175,15 @@ MeasuredMap read_x3p(const std::string& path, const MeasuredReadOptions& options
     const size_t count = m.z.size();
     const std::string data = zip.read(folder + data_name, count * width);
     if (data.size() != count * width)
-        throw std::runtime_error(path + ": " + data_name + " holds " + std::to_string(data.size()) +
-                                 " bytes; " + std::to_string(m.nx) + " x " + std::to_string(m.ny) +
-                                 " points of type " + type + " need " +
-                                 std::to_string(count * width));
+        throw std::runtime_error(path + ": " + quoted(data_name) + " holds " +
+                                 std::to_string(data.size()) + " bytes; " + std::to_string(m.nx) +
+                                 " x " + std::to_string(m.ny) + " points of type " + type +
+                                 " need " + std::to_string(count * width));
     if (const std::string sum =
             lower_trimmed(link.child("MD5ChecksumPointData").text().as_string());
         options.verify_checksums && !sum.empty() && sum != md5_hex(data))
         throw std::runtime_error(
-            path + ": " + data_name +
+            path + ": " + quoted(data_name) +
             " does not match its MD5 checksum in main.xml: the file is damaged "
             "(surface.input_checksums = false reads it)");
     for (size_t k = 0; k < count; ++k) {
@@ -198,7 +200,7 @@ MeasuredMap read_x3p(const std::string& path, const MeasuredReadOptions& options
         !valid.empty()) {
         const std::string bits = zip.read(folder + valid, (count + 7) / 8);
         if (bits.size() < (count + 7) / 8)
-            throw std::runtime_error(path + ": " + valid + " is shorter than the points");
+            throw std::runtime_error(path + ": " + quoted(valid) + " is shorter than the points");
         for (size_t k = 0; k < count; ++k)
             if (!((static_cast<unsigned char>(bits[k / 8]) >> (k % 8)) & 1)) m.z[k] = NAN;
     }
