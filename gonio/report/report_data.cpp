@@ -187,6 +187,9 @@ json case_json(const ResultSummary& summary, const CaseSummary& s) {
         } catch (const std::exception& e) {
             ndf["measured_note"] = std::string("the surface could not be read: ") + e.what();
         }
+    } else if (const std::string text = attribute(s.attributes, "surface");
+               text.find(" (read: ") != std::string::npos) {
+        ndf["measured_note"] = "a measured map: " + text; // docs/measured-surfaces.md
     } else {
         ndf["measured_note"] =
             c.simulated ? "the surface is no longer in the cache" : "no surface (gonio model)";

@@ -5,6 +5,7 @@
 #include "gonio/run/surface_ensemble.h"
 #include "gonio/trace/gonioreflectometer.h"
 #include "gonio/trace/scene.h"
+#include "heightfield/measured/surface_character.h"
 #include "heightfield/surface_source.h"
 
 #include <chrono>
@@ -14,12 +15,22 @@
 namespace gonio {
 
 namespace {
-// A measured map in the result: the file, and what was read and done to it.
-std::string loaded_text(const std::string& input, const SurfaceOrigin& origin) {
+// A measured map in the result: the file, what was read and done to it and, for a prepared
+// (third-party) map, what the surface is in the analytic models' terms.
+std::string loaded_text(const std::string& input, const SurfaceOrigin& origin,
+                        const HeightField& surface) {
+    if (origin.preparation.empty()) return input; // an OpenEXR map read as stored
     std::string text = input;
     for (const std::string& step : origin.preparation)
         text += (step == origin.preparation.front() ? " (" : "; ") + step;
-    return origin.preparation.empty() ? text : text + ")";
+    const SurfaceCharacter c = characterise_surface(surface);
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "; principal slopes: sqrt(2) RMS %.4f along %.1f deg, %.4f across; closest "
+                  "analytic: ggx alpha %.4f (TV %.4f), beckmann alpha %.4f (TV %.4f))",
+                  c.alpha_major, c.major_axis_deg, c.alpha_minor, c.ggx.alpha, c.ggx.distance,
+                  c.beckmann.alpha, c.beckmann.distance);
+    return text + line;
 }
 } // namespace
 
@@ -111,7 +122,7 @@ class CaseTracer {
             context_.observer.warn(origin.warning);
         if (r == 0)
             surface_text_ =
-                origin.loaded ? loaded_text(c_.surface.input, origin) : origin.cache_path;
+                origin.loaded ? loaded_text(c_.surface.input, origin, surface) : origin.cache_path;
         std::unique_ptr<Scene> scene;
         {
             ScopedPhase t(phases_, Phase::scene);
