@@ -77,7 +77,7 @@ HeightField read_input_map(const SurfaceSpec& spec, std::vector<std::string>& re
     MapPreparation p;
     p.level = spec.level == "auto" ? (exr ? Levelling::none : Levelling::plane)
                                    : enum_named<Levelling>(spec.level);
-    p.spikes = spec.spikes >= 0 ? spec.spikes : exr ? 0.0 : 20.0;
+    p.spikes = spec.spikes >= 0 ? spec.spikes : exr ? 0.0 : MapPreparation{}.spikes;
     p.max_missing = spec.max_missing;
     PreparedMap prepared = prepare_measured_map(map, p, spec.input);
     char text[256];

@@ -29,8 +29,9 @@ const Key kSpacing = Key::number("spacing", {1e-9, 1e9, true, false},
                          .fallback(1.0);
 const Key kInput =
     Key::path("input",
-              "a measured height map instead of generation (square, one channel Y/Z/H/R), "
-              "or a normal map (R, G, B = the unit normal) integrated by Frankot-Chellappa")
+              "a measured height map instead of generation (X3P, SDF, GSF, a plain matrix or "
+              "OpenEXR: docs/measured-surfaces.md), or an OpenEXR normal map (R, G, B = the unit "
+              "normal) integrated by Frankot-Chellappa")
         .note_default("—");
 // A measured map's preparation (heightfield/measured/map_preparation.h, docs/measured-surfaces.md).
 const Key kLevel = Key::string("level", {"auto", "none", "plane", "quadratic", "cubic"},
