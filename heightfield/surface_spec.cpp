@@ -1,5 +1,6 @@
 #include "heightfield/surface_spec.h"
 
+#include "heightfield/measured/map_preparation.h"
 #include "heightfield/ndf/ndf.h"
 #include "heightfield/surface_generator.h"
 
@@ -34,7 +35,12 @@ const Key kInput =
               "normal) integrated by Frankot-Chellappa")
         .note_default("—");
 // A measured map's preparation (heightfield/measured/map_preparation.h, docs/measured-surfaces.md).
-const Key kLevel = Key::string("level", {"auto", "none", "plane", "quadratic", "cubic"},
+std::vector<std::string> level_choices() {
+    std::vector<std::string> names = enum_names<Levelling>();
+    names.insert(names.begin(), "auto");
+    return names;
+}
+const Key kLevel = Key::string("level", level_choices(),
                                "input maps: least-squares form removed (auto: a plane for "
                                "third-party formats, none for OpenEXR maps)")
                        .fallback("auto");

@@ -102,7 +102,8 @@ def run(config: Config | str | os.PathLike[str], threads: int | None = None,
     models, as `gonio run` does: the same numbers, bit for bit.
 
     threads: worker threads (None: every core). progress: None or a callable
-    progress(done, total, label) called as each incidence starts. cache: the surface cache
+    progress(done, total, label) called as work on each incidence and surface starts, and once
+    at the end with label "done". cache: the surface cache
     (None or True: $GONIO_CACHE_DIR or ~/.cache/gonio/surfaces; False: none; a directory).
     Returns a gonio.Result. Ctrl-C raises KeyboardInterrupt between incidences."""
     if not isinstance(config, Config):
@@ -144,9 +145,7 @@ def _result_to_xarray(self: Any, case: str | None = None) -> xarray.Dataset | di
     """The case's Dataset (or, with no case, a dict of every case's), exactly as
     xarray.open_dataset(file, group=case, engine="h5netcdf") gives it for the file write()
     writes: the result is written to a temporary file and read back."""
-    with tempfile.TemporaryDirectory(prefix="gonio_") as d:
-        path = os.path.join(d, "result.h5")
-        self.write(path)
+    with _AsFile(self) as path:
         return _datasets(path, case)
 
 
@@ -155,14 +154,15 @@ MaskingResult.to_xarray = _result_to_xarray
 
 
 class _AsFile:
-    """A result (gonio.Result, gonio.ResultFile or a path) as a file path, for the readers of
-    files (BsdfTable, exports): a Result is written to a temporary file for the while."""
+    """A result (gonio.Result or MaskingResult, gonio.ResultFile or a path) as a file path, for
+    the readers of files (to_xarray, BsdfTable, exports): a result in memory is written to a
+    temporary file for the while."""
 
     def __init__(self, source):
         self.source, self.dir = source, None
 
     def __enter__(self):
-        if isinstance(self.source, Result):
+        if isinstance(self.source, (Result, MaskingResult)):
             self.dir = tempfile.TemporaryDirectory(prefix="gonio_")
             path = os.path.join(self.dir.name, "result.h5")
             self.source.write(path)
