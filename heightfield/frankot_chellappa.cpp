@@ -24,6 +24,11 @@ std::mutex& fftwf_planner() {
     return m;
 }
 
+std::mutex& fftw_planner() {
+    static std::mutex m;
+    return m;
+}
+
 void init_fftw_threads() {
     static std::once_flag once;
     std::call_once(once, [] {

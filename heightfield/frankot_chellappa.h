@@ -61,5 +61,7 @@ void init_fftw_threads();
 // FFTW's planner is not thread-safe (only fftwf_execute is): every single-precision plan is made
 // and destroyed under this lock, since an ensemble makes its next surface while it traces.
 std::mutex& fftwf_planner();
+// The same for double-precision plans (tabulated NDFs, the measured maps' Gaussian filter).
+std::mutex& fftw_planner();
 
 } // namespace gonio

@@ -49,13 +49,26 @@ std::vector<double> target_cell_mass(const Ndf& ndf, int bins) {
     return integrate_over_cells(BeckersSensor(bins), [&](const Vec3& m) { return ndf.pdf_m(m); });
 }
 
-double ndf_distance(const HeightField& surface, const Ndf& ndf, int bins) {
-    const BeckersSensor sensor(bins);
-    const std::vector<double> m = measured_cell_mass(surface, sensor),
-                              t = target_cell_mass(ndf, bins);
+std::vector<double> facet_cell_mass(const HeightField& surface, int bins) {
+    return measured_cell_mass(surface, BeckersSensor(bins));
+}
+
+void correlation_lengths(const HeightField& s, double& along_x, double& along_y) {
+    FrankotChellappa fft(s.n, 1);
+    std::vector<float> acf;
+    fft.autocorrelation(s.h, acf);
+    along_x = correlation_length(acf, s.n, true) * s.spacing;
+    along_y = correlation_length(acf, s.n, false) * s.spacing;
+}
+
+double total_variation(const std::vector<double>& a, const std::vector<double>& b) {
     double tv = 0;
-    for (int c = 0; c < bins; ++c) tv += std::abs(m[c] - t[c]);
+    for (size_t c = 0; c < a.size(); ++c) tv += std::abs(a[c] - b[c]);
     return 0.5 * tv;
+}
+
+double ndf_distance(const HeightField& surface, const Ndf& ndf, int bins) {
+    return total_variation(facet_cell_mass(surface, bins), target_cell_mass(ndf, bins));
 }
 
 SurfaceMetrics measure_surface(const HeightField& s, const Ndf& ndf, int bins) {
@@ -116,11 +129,7 @@ SurfaceMetrics measure_surface(const HeightField& s, const Ndf& ndf, int bins) {
     for (float v : s.h)
         r.height_histogram[std::min(63, int((v - r.height_min) / span * 64))] +=
             1.0 / double(s.h.size());
-    FrankotChellappa fft(s.n, 1);
-    std::vector<float> acf;
-    fft.autocorrelation(s.h, acf);
-    r.correlation_length_x = correlation_length(acf, s.n, true) * s.spacing;
-    r.correlation_length_y = correlation_length(acf, s.n, false) * s.spacing;
+    correlation_lengths(s, r.correlation_length_x, r.correlation_length_y);
     return r;
 }
 

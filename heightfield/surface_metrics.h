@@ -36,5 +36,11 @@ SurfaceMetrics measure_surface(const HeightField& surface, const Ndf& ndf, int b
 
 // Mass of D(m) cos(theta_m) in every cell of an equal-area sensor of `bins` cells.
 std::vector<double> target_cell_mass(const Ndf& ndf, int bins);
+// The share of the surface's facets (by projected area) whose normals fall in every cell.
+std::vector<double> facet_cell_mass(const HeightField& surface, int bins);
+// The heights' autocorrelation lengths along x and y (SurfaceMetrics').
+void correlation_lengths(const HeightField& surface, double& along_x, double& along_y);
+// 1/2 sum |a - b| over the cells.
+double total_variation(const std::vector<double>& a, const std::vector<double>& b);
 
 } // namespace gonio

@@ -79,6 +79,7 @@ HeightField read_input_map(const SurfaceSpec& spec, std::vector<std::string>& re
                                    : enum_named<Levelling>(spec.level);
     p.spikes = spec.spikes >= 0 ? spec.spikes : exr ? 0.0 : MapPreparation{}.spikes;
     p.max_missing = spec.max_missing;
+    p.high_pass = spec.high_pass;
     PreparedMap prepared = prepare_measured_map(map, p, spec.input);
     char text[256];
     std::snprintf(text, sizeof text, "read: %s, %d x %d points, spacing %.6g x %.6g %s (%s)",

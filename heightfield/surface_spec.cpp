@@ -52,6 +52,11 @@ const Key kMaxMissing = Key::number("max_missing", {0, 0.9},
                                     "input maps: the largest share of missing points (spikes "
                                     "included) filled by interpolation; more is refused")
                             .fallback(0.05);
+const Key kHighPass = Key::number("high_pass", {0, 1e12},
+                                  "input maps: the cut-off wavelength of a Gaussian high-pass "
+                                  "(ISO 16610-61) removing the form and waviness longer than it, "
+                                  "in the map's length unit (micrometres; 0: none)")
+                          .fallback(0.0);
 const Key kInputSpacing = Key::number("input_spacing", {1e-9, 1e9, true, false},
                                       "input maps: the spacing of a plain matrix of heights, "
                                       "micrometres (other formats carry their own)")
@@ -101,10 +106,12 @@ SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf, boo
         // A measured map replaces generation: generation keys would be unused.
         s.input = r.path(kInput);
         s.edges = enum_named<Edges>(r.string(kEdges));
-        s.prepare_asked = r.has(kLevel.name) || r.has(kSpikes.name) || r.has(kMaxMissing.name);
+        s.prepare_asked = r.has(kLevel.name) || r.has(kSpikes.name) || r.has(kMaxMissing.name) ||
+                          r.has(kHighPass.name);
         s.level = r.string(kLevel);
         s.spikes = r.has(kSpikes.name) ? r.number(kSpikes) : -1;
         s.max_missing = r.number(kMaxMissing);
+        s.high_pass = r.number(kHighPass);
         if (r.has(kInputSpacing.name)) s.input_spacing = r.number(kInputSpacing);
         s.input_checksums = r.boolean(kInputChecksums);
         s.generator = nullptr;
@@ -136,7 +143,7 @@ std::vector<KeyGroup> surface_key_groups() {
          "",
          "",
          {generator_key(), kSeed, kSize, kSpacing, kInput, kEdges, kLevel, kSpikes, kMaxMissing,
-          kInputSpacing, kInputChecksums, kRealisations, kMaxRealisations}}};
+          kHighPass, kInputSpacing, kInputChecksums, kRealisations, kMaxRealisations}}};
     // One group per list of keys; generators sharing a list share its group.
     for (const SurfaceGenerator* g : surface_generators()) {
         KeyGroup* shared = nullptr;

@@ -64,6 +64,7 @@ struct SurfaceSpec {
     std::string level = "auto";
     double spikes = -1;
     double max_missing = 0.05;
+    double high_pass = 0; // the Gaussian high-pass's cut-off wavelength (0: none)
     double input_spacing = 0;    // plain matrices
     bool input_checksums = true; // refuse files whose checksums fail
     bool prepare_asked = false;

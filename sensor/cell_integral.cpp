@@ -1,5 +1,6 @@
 #include "sensor/cell_integral.h"
 
+#include "core/parallel.h"
 #include "core/quadrature.h"
 
 #include <cmath>
@@ -10,7 +11,8 @@ std::vector<double> integrate_over_cells(const BeckersSensor& sensor,
                                          const std::function<double(const Vec3&)>& density) {
     const GaussLegendre& gl = gauss_legendre(8);
     std::vector<double> out(sensor.cell_count(), 0.0);
-    for (int c = 0; c < sensor.cell_count(); ++c) {
+    // Cells are independent: each is summed in one order, whatever the threads.
+    parallel_for(0, sensor.cell_count(), [&](int c) {
         const SensorCell& cell = sensor.cell(c);
         const double z0 = std::cos(cell.theta_max), z1 = std::cos(cell.theta_min);
         double sum = 0;
@@ -29,8 +31,8 @@ std::vector<double> integrate_over_cells(const BeckersSensor& sensor,
                     }
                 }
             }
-        out[c] = sum;
-    }
+        out[size_t(c)] = sum;
+    });
     return out;
 }
 

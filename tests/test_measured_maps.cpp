@@ -3,6 +3,7 @@
 // and the preparation steps checked on maps whose answer is known.
 #include "heightfield/exr_io.h"
 #include "heightfield/generate.h"
+#include "heightfield/measured/gaussian_filter.h"
 #include "heightfield/measured/map_preparation.h"
 #include "heightfield/measured/measured_map.h"
 #include "heightfield/measured/surface_character.h"
@@ -253,6 +254,57 @@ TEST_CASE("Preparation: levelling, filling, spikes and the square cut do what th
                          std::runtime_error);
 }
 
+TEST_CASE("The Gaussian high-pass transmits each wavelength as ISO 16610 states") {
+    // Cosines of the mirror extension's basis are the filter's eigenfunctions: a wave of the
+    // cut-off wavelength keeps exactly half its amplitude (the standard's definition), a short one
+    // 1 - exp(-pi (alpha lc / lambda)^2), a constant nothing.
+    const int nx = 96, ny = 64;
+    const double dx = 0.5;
+    const int kx = 6, ky = 40;                 // half-periods across the map
+    const double lx = 2 * nx * dx / kx;        // 16
+    const double ly = 2 * ny * dx / ky;        // 1.6
+    auto wave = [&](int x, int y, double a, double b) {
+        return a * std::cos(M_PI * kx * (x + 0.5) / nx) + b * std::cos(M_PI * ky * (y + 0.5) / ny);
+    };
+    std::vector<double> z(size_t(nx) * ny);
+    for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x) z[size_t(y) * nx + x] = 7 + wave(x, y, 3, 0.2);
+    CHECK(gaussian_transmission(1 / lx, lx) == doctest::Approx(0.5).epsilon(1e-12));
+    gaussian_high_pass(z, nx, ny, dx, lx);
+    const double keep_short = 1 - gaussian_transmission(1 / ly, lx);
+    CHECK(keep_short > 0.99);
+    for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x)
+            REQUIRE(z[size_t(y) * nx + x] ==
+                    doctest::Approx(wave(x, y, 1.5, 0.2 * keep_short)).epsilon(1e-9).scale(1));
+
+    // Through the preparation: the form goes, the roughness stays, the step is reported; a
+    // cut-off under two samples is refused naming the key.
+    MeasuredMap m = plane_map(nx, ny, 0, 0, 0);
+    m.dx = m.dy = dx;
+    for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x) m.at(x, y) = wave(x, y, 3, 0.2);
+    MapPreparation p;
+    p.level = Levelling::none, p.spikes = 0, p.high_pass = lx / 4;
+    const PreparedMap filtered = prepare_measured_map(m, p, "waves");
+    REQUIRE(filtered.report.size() == 2); // and the square cut
+    CHECK(filtered.report[0].find("high-pass: Gaussian, cut-off 4") == 0);
+    const double long_kept = 1 - gaussian_transmission(1 / lx, lx / 4);
+    CHECK(long_kept < 0.05); // a Gaussian rolls off slowly: 4 % at four times the cut-off
+    const int x0 = (nx - ny) / 2;
+    for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < ny; ++x)
+            REQUIRE(filtered.surface.at(x, y) ==
+                    doctest::Approx(wave(x0 + x, y, 3 * long_kept,
+                                         0.2 * (1 - gaussian_transmission(1 / ly, lx / 4))))
+                        .scale(1)
+                        .epsilon(1e-5)); // float heights
+    p.high_pass = 0.9;
+    CHECK_THROWS_WITH_AS(prepare_measured_map(m, p, "waves"),
+                         doctest::Contains("waves: surface.high_pass 0.9 is under two samples"),
+                         std::runtime_error);
+}
+
 TEST_CASE("gonio's own OpenEXR maps are read exactly as before unless a key asks") {
     const fs::path dir = scratch();
     HeightField s(16, 0.5);
@@ -272,6 +324,11 @@ TEST_CASE("gonio's own OpenEXR maps are read exactly as before unless a key asks
     const HeightField levelled = read_input_map(spec, report);
     CHECK(levelled.h != same.h);
     CHECK(report.size() >= 2);
+    spec.level = "none", report.clear();
+    spec.high_pass = 2;
+    const HeightField filtered = read_input_map(spec, report);
+    CHECK(filtered.h != same.h);
+    CHECK(report.back().find("high-pass") == 0);
     fs::remove_all(dir);
 }
 
@@ -283,10 +340,24 @@ TEST_CASE("A generated surface's closest analytic distribution is its own family
     const Beckmann beckmann(0.4);
     const SurfaceCharacter g = characterise_surface(generate_surface(ggx, spec, 2));
     CHECK(g.best().family == "ggx");
-    CHECK(g.ggx.alpha == doctest::Approx(0.3).epsilon(0.05));
+    CHECK(g.ggx.alpha_x == doctest::Approx(0.3).epsilon(0.05));
     const SurfaceCharacter b = characterise_surface(generate_surface(beckmann, spec, 2));
     CHECK(b.best().family == "beckmann");
-    CHECK(b.beckmann.alpha == doctest::Approx(0.4).epsilon(0.05));
+    CHECK(b.beckmann.alpha_x == doctest::Approx(0.4).epsilon(0.05));
     // Isotropic: the principal RMS slopes agree to a few per cent.
     CHECK(b.alpha_major / b.alpha_minor < 1.1);
+}
+
+TEST_CASE("An anisotropic surface's closest distribution along x and y is its own") {
+    SurfaceSpec spec;
+    spec.size = 128;
+    spec.seed = 11;
+    const Ggx ggx(0.15, 0.45);
+    const SurfaceCharacter g = characterise_surface(generate_surface(ggx, spec, 2));
+    CHECK(g.best_xy().family == "ggx");
+    CHECK(g.ggx_xy.alpha_x == doctest::Approx(0.15).epsilon(0.05));
+    CHECK(g.ggx_xy.alpha_y == doctest::Approx(0.45).epsilon(0.05));
+    CHECK(g.ggx_xy.distance < 0.5 * g.ggx.distance); // the isotropic fit cannot follow it
+    CHECK(g.major_axis_deg == doctest::Approx(90).epsilon(0.02));
+    CHECK(g.best_xy().ndf_toml().find("{ type = \"ggx\", alpha_x = 0.1") == 0);
 }

@@ -126,8 +126,13 @@ int surface(const CommonOptions& o) {
             attrs.numbers["gonio_alpha_minor"] = character->alpha_minor;
             attrs.numbers["gonio_major_axis_deg"] = character->major_axis_deg;
             for (const AnalyticFit* f : {&character->ggx, &character->beckmann}) {
-                attrs.numbers["gonio_fit_" + f->family + "_alpha"] = f->alpha;
+                attrs.numbers["gonio_fit_" + f->family + "_alpha"] = f->alpha_x;
                 attrs.numbers["gonio_fit_" + f->family + "_distance"] = f->distance;
+            }
+            for (const AnalyticFit* f : {&character->ggx_xy, &character->beckmann_xy}) {
+                attrs.numbers["gonio_fit_" + f->family + "_alpha_x"] = f->alpha_x;
+                attrs.numbers["gonio_fit_" + f->family + "_alpha_y"] = f->alpha_y;
+                attrs.numbers["gonio_fit_" + f->family + "_xy_distance"] = f->distance;
             }
         }
         // The fidelity metrics travel with the surface.
@@ -191,10 +196,15 @@ int surface(const CommonOptions& o) {
                         character->alpha_major, character->major_axis_deg, character->alpha_minor,
                         character->alpha_minor > 0 ? character->alpha_major / character->alpha_minor
                                                    : INFINITY);
+            const SurfaceCharacter& k = *character;
             std::printf("  closest analytic NDFs (TV distance): ggx alpha %.4f (%.4f), beckmann "
-                        "alpha %.4f (%.4f): %s\n",
-                        character->ggx.alpha, character->ggx.distance, character->beckmann.alpha,
-                        character->beckmann.distance, character->best().family.c_str());
+                        "alpha %.4f (%.4f)\n",
+                        k.ggx.alpha_x, k.ggx.distance, k.beckmann.alpha_x, k.beckmann.distance);
+            std::printf("  along x and y: ggx %.4f %.4f (%.4f), beckmann %.4f %.4f (%.4f)\n",
+                        k.ggx_xy.alpha_x, k.ggx_xy.alpha_y, k.ggx_xy.distance,
+                        k.beckmann_xy.alpha_x, k.beckmann_xy.alpha_y, k.beckmann_xy.distance);
+            std::printf("  closest: ndf = %s (isotropic: ndf = %s)\n",
+                        k.best_xy().ndf_toml().c_str(), k.best().ndf_toml().c_str());
         }
         std::printf("  wrote %s, %s, %s, %s\n", out.c_str(), sibling(out, "_normals.exr").c_str(),
                     sibling(out, "_ndf.exr").c_str(), sibling(out, "_ndf.csv").c_str());

@@ -23,14 +23,7 @@ std::string loaded_text(const std::string& input, const SurfaceOrigin& origin,
     std::string text = input;
     for (const std::string& step : origin.preparation)
         text += (step == origin.preparation.front() ? " (" : "; ") + step;
-    const SurfaceCharacter c = characterise_surface(surface);
-    char line[320];
-    std::snprintf(line, sizeof line,
-                  "; principal slopes: sqrt(2) RMS %.4f along %.1f deg, %.4f across; closest "
-                  "analytic: ggx alpha %.4f (TV %.4f), beckmann alpha %.4f (TV %.4f))",
-                  c.alpha_major, c.major_axis_deg, c.alpha_minor, c.ggx.alpha, c.ggx.distance,
-                  c.beckmann.alpha, c.beckmann.distance);
-    return text + line;
+    return text + "; " + characterise_surface(surface).summary() + ")";
 }
 } // namespace
 

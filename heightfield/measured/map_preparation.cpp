@@ -1,5 +1,7 @@
 #include "heightfield/measured/map_preparation.h"
 
+#include "heightfield/measured/gaussian_filter.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +15,14 @@ std::string percent(double share) {
     char text[32];
     std::snprintf(text, sizeof text, "%.3g %%", 100 * share);
     return text;
+}
+
+double rms(const std::vector<double>& z) {
+    double mean = 0, square = 0;
+    for (double v : z) mean += v;
+    mean /= double(z.size());
+    for (double v : z) square += (v - mean) * (v - mean);
+    return std::sqrt(square / double(z.size()));
 }
 
 double median(std::vector<double>& v) {
@@ -204,6 +214,23 @@ PreparedMap prepare_measured_map(const MeasuredMap& map, const MapPreparation& p
         throw std::runtime_error(path + ": its cells are not square (spacing " +
                                  std::to_string(m.dx) + " along x, " + std::to_string(m.dy) +
                                  " along y): gonio's height fields need one spacing");
+    if (p.high_pass > 0) {
+        // Before the square cut, so that the whole map (not the cut's edges) holds the form.
+        char text[200];
+        if (p.high_pass < 2 * m.dx) {
+            std::snprintf(text, sizeof text,
+                          ": surface.high_pass %g is under two samples of spacing %g; allowed: 0 "
+                          "(none) or at least %g, in the map's length unit",
+                          p.high_pass, m.dx, 2 * m.dx);
+            throw std::runtime_error(path + text);
+        }
+        const double before = rms(m.z);
+        gaussian_high_pass(m.z, m.nx, m.ny, m.dx, p.high_pass);
+        std::snprintf(text, sizeof text,
+                      "high-pass: Gaussian, cut-off %.4g (%.3g samples): RMS height %.4g -> %.4g",
+                      p.high_pass, p.high_pass / m.dx, before, rms(m.z));
+        out.report.push_back(text);
+    }
     const int side = std::min(m.nx, m.ny);
     const int x0 = (m.nx - side) / 2, y0 = (m.ny - side) / 2;
     if (m.nx != m.ny)

@@ -1,7 +1,8 @@
 #pragma once
 // What a measured map needs before it can be traced as a periodic patch: spikes removed (a robust
-// local rule), missing points filled, the tilt or form levelled, and a square cut out of a
-// rectangular map. Each step is a surface key (surface_spec.cpp) and says what it did.
+// local rule), missing points filled, the tilt or form levelled, optionally the waviness removed
+// by a Gaussian high-pass, and a square cut out of a rectangular map. Each step is a surface key
+// (surface_spec.cpp) and says what it did.
 #include "core/enum_names.h"
 #include "heightfield/heightfield.h"
 #include "heightfield/measured/measured_map.h"
@@ -24,6 +25,8 @@ struct MapPreparation {
     double max_missing = 0.05; // the largest share of missing points (spikes included) filled
     double spikes = 20;        // robust sigmas of the local residual beyond which a point is a
                                // spike (0: none removed)
+    double high_pass = 0;      // the Gaussian high-pass's cut-off wavelength, in the map's length
+                               // unit (0: none; gaussian_filter.h)
 };
 
 struct PreparedMap {

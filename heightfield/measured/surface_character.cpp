@@ -5,35 +5,89 @@
 #include "heightfield/surface_metrics.h"
 
 #include <cmath>
+#include <cstdio>
+#include <functional>
 
 namespace gonio {
 
 namespace {
-// Golden-section search of the alpha minimising the TV distance, on log alpha over [1e-3, 20]
-// (the distance is unimodal in alpha for these families; a bracket taken from the RMS slope
-// would miss heavy-tailed maps, whose RMS slope far exceeds their typical one).
-template <class Family>
-AnalyticFit fit(const HeightField& s, int bins, const char* name) {
-    auto distance = [&](double log_alpha) {
-        return ndf_distance(s, Family(std::exp(log_alpha)), bins);
-    };
-    double a = std::log(1e-3), b = std::log(20.0);
+constexpr double kLowest = 1e-3, kHighest = 20; // the roughness searched
+
+// Golden-section search of the x in [a, b] minimising f, to `tolerance` (f is unimodal here).
+double golden_minimum(const std::function<double(double)>& f, double a, double b,
+                      double tolerance) {
     const double g = (std::sqrt(5.0) - 1) / 2;
     double c = b - g * (b - a), d = a + g * (b - a);
-    double fc = distance(c), fd = distance(d);
-    for (int k = 0; k < 60 && b - a > 1e-4; ++k) {
+    double fc = f(c), fd = f(d);
+    for (int k = 0; k < 60 && b - a > tolerance; ++k) {
         if (fc < fd)
-            b = d, d = c, fd = fc, c = b - g * (b - a), fc = distance(c);
+            b = d, d = c, fd = fc, c = b - g * (b - a), fc = f(c);
         else
-            a = c, c = d, fc = fd, d = a + g * (b - a), fd = distance(d);
+            a = c, c = d, fc = fd, d = a + g * (b - a), fd = f(d);
     }
-    AnalyticFit f;
-    f.family = name;
-    f.alpha = std::exp(0.5 * (a + b));
-    f.distance = distance(std::log(f.alpha));
-    return f;
+    return 0.5 * (a + b);
+}
+
+// The isotropic alpha minimising the TV distance, by golden-section search of log alpha over
+// [1e-3, 20] (a bracket taken from the RMS slope would miss heavy-tailed maps, whose RMS slope
+// far exceeds their typical one). Then alpha_x and alpha_y from it, by alternating searches of
+// one with the other held, over a factor of 4 either side, until neither moves by 0.1 %.
+template <class Family>
+void fit(const std::vector<double>& facets, int bins, const char* name, AnalyticFit& iso,
+         AnalyticFit& xy) {
+    auto distance = [&](double ax, double ay) {
+        return total_variation(facets, target_cell_mass(Family(ax, ay), bins));
+    };
+    const double log_alpha =
+        golden_minimum([&](double l) { return distance(std::exp(l), std::exp(l)); },
+                       std::log(kLowest), std::log(kHighest), 1e-4);
+    iso.family = xy.family = name;
+    iso.alpha_x = iso.alpha_y = std::exp(log_alpha);
+    iso.distance = distance(iso.alpha_x, iso.alpha_y);
+
+    double lx = log_alpha, ly = log_alpha;
+    const double reach = std::log(4.0), lo = std::log(kLowest), hi = std::log(kHighest);
+    for (int round = 0; round < 8; ++round) {
+        const double x =
+            golden_minimum([&](double l) { return distance(std::exp(l), std::exp(ly)); },
+                           std::max(lo, lx - reach), std::min(hi, lx + reach), 1e-4);
+        const double y =
+            golden_minimum([&](double l) { return distance(std::exp(x), std::exp(l)); },
+                           std::max(lo, ly - reach), std::min(hi, ly + reach), 1e-4);
+        const bool settled = std::abs(x - lx) < 1e-3 && std::abs(y - ly) < 1e-3;
+        lx = x, ly = y;
+        if (settled) break;
+    }
+    xy.alpha_x = std::exp(lx), xy.alpha_y = std::exp(ly);
+    xy.distance = distance(xy.alpha_x, xy.alpha_y);
+    if (xy.distance > iso.distance) xy = iso; // never worse than the isotropic fit
 }
 } // namespace
+
+std::string AnalyticFit::ndf_toml() const {
+    char text[160];
+    if (isotropic())
+        std::snprintf(text, sizeof text, "{ type = \"%s\", alpha = %.4g }", family.c_str(),
+                      alpha_x);
+    else
+        std::snprintf(text, sizeof text, "{ type = \"%s\", alpha_x = %.4g, alpha_y = %.4g }",
+                      family.c_str(), alpha_x, alpha_y);
+    return text;
+}
+
+std::string SurfaceCharacter::summary() const {
+    char text[480];
+    std::snprintf(text, sizeof text,
+                  "principal slopes: sqrt(2) RMS %.4f along %.1f deg, %.4f across; "
+                  "correlation length x %.4g y %.4g; closest "
+                  "analytic (TV distance): ggx alpha %.4f (%.4f), beckmann alpha %.4f (%.4f); "
+                  "along x and y: ggx %.4f %.4f (%.4f), beckmann %.4f %.4f (%.4f)",
+                  alpha_major, major_axis_deg, alpha_minor, correlation_x, correlation_y,
+                  ggx.alpha_x, ggx.distance, beckmann.alpha_x, beckmann.distance, ggx_xy.alpha_x,
+                  ggx_xy.alpha_y, ggx_xy.distance, beckmann_xy.alpha_x, beckmann_xy.alpha_y,
+                  beckmann_xy.distance);
+    return text;
+}
 
 SurfaceCharacter characterise_surface(const HeightField& s, int bins) {
     // The slopes' covariance over every triangle (both of a cell have the same area).
@@ -56,8 +110,10 @@ SurfaceCharacter characterise_surface(const HeightField& s, int bins) {
     double axis = 0.5 * std::atan2(2 * sxy, sxx - syy) * 180 / M_PI;
     if (axis < 0) axis += 180;
     c.major_axis_deg = axis >= 180 ? axis - 180 : axis;
-    c.ggx = fit<Ggx>(s, bins, "ggx");
-    c.beckmann = fit<Beckmann>(s, bins, "beckmann");
+    correlation_lengths(s, c.correlation_x, c.correlation_y);
+    const std::vector<double> facets = facet_cell_mass(s, bins);
+    fit<Ggx>(facets, bins, "ggx", c.ggx, c.ggx_xy);
+    fit<Beckmann>(facets, bins, "beckmann", c.beckmann, c.beckmann_xy);
     return c;
 }
 

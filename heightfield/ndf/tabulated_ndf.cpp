@@ -4,6 +4,7 @@
 #include "core/quadrature.h"
 #include "core/random.h"
 #include "heightfield/exr_io.h"
+#include "heightfield/frankot_chellappa.h"
 #include "heightfield/ndf/ndf_family.h"
 #include "heightfield/ndf/piecewise_linear.h"
 
@@ -22,11 +23,6 @@ namespace gonio {
 namespace {
 constexpr int kThetaO = 256; // polar-angle intervals of the projected-area table
 constexpr int kNodes = 16;   // Gauss-Legendre nodes per table interval in theta_m
-
-std::mutex& fftw_planner() { // FFTW's planner is not thread-safe
-    static std::mutex m;
-    return m;
-}
 
 // One complex-to-real or real-to-complex transform of length n, planned once.
 struct RealFft {
