@@ -58,9 +58,13 @@ const Key kHighPass = Key::number("high_pass", {0, 1e12},
                                   "in the map's length unit (micrometres; 0: none)")
                           .fallback(0.0);
 const Key kInputSpacing = Key::number("input_spacing", {1e-9, 1e9, true, false},
-                                      "input maps: the spacing of a plain matrix of heights, "
-                                      "micrometres (other formats carry their own)")
+                                      "input maps: the spacing of a plain matrix of heights, in "
+                                      "surface.input_unit (other formats carry their own)")
                               .note_default("—");
+const Key kInputUnit = Key::string("input_unit", {"m", "mm", "um", "nm"},
+                                   "input maps: the length unit of a plain matrix's heights and "
+                                   "of surface.input_spacing (other formats carry their own)")
+                           .fallback("um");
 const Key kInputChecksums =
     Key::boolean("input_checksums", "input maps: refuse a file whose checksums (X3P's MD5) "
                                     "do not match; false reads it anyway")
@@ -113,6 +117,7 @@ SurfaceSpec read_surface(TableReader& r, std::uint64_t seed, const Ndf& ndf, boo
         s.max_missing = r.number(kMaxMissing);
         s.high_pass = r.number(kHighPass);
         if (r.has(kInputSpacing.name)) s.input_spacing = r.number(kInputSpacing);
+        s.input_unit = r.string(kInputUnit);
         s.input_checksums = r.boolean(kInputChecksums);
         s.generator = nullptr;
         if (r.has(kRealisations.name) && r.integer(kRealisations) > 1)
@@ -143,7 +148,7 @@ std::vector<KeyGroup> surface_key_groups() {
          "",
          "",
          {generator_key(), kSeed, kSize, kSpacing, kInput, kEdges, kLevel, kSpikes, kMaxMissing,
-          kHighPass, kInputSpacing, kInputChecksums, kRealisations, kMaxRealisations}}};
+          kHighPass, kInputSpacing, kInputUnit, kInputChecksums, kRealisations, kMaxRealisations}}};
     // One group per list of keys; generators sharing a list share its group.
     for (const SurfaceGenerator* g : surface_generators()) {
         KeyGroup* shared = nullptr;

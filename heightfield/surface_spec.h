@@ -64,8 +64,9 @@ struct SurfaceSpec {
     std::string level = "auto";
     double spikes = -1;
     double max_missing = 0.05;
-    double high_pass = 0; // the Gaussian high-pass's cut-off wavelength (0: none)
-    double input_spacing = 0;    // plain matrices
+    double high_pass = 0;     // the Gaussian high-pass's cut-off wavelength (0: none)
+    double input_spacing = 0; // plain matrices, in input_unit
+    std::string input_unit = "um";
     bool input_checksums = true; // refuse files whose checksums fail
     bool prepare_asked = false;
     // An ensemble: independent surfaces of the same distribution (realisation r has the seed

@@ -83,7 +83,7 @@ TEST_CASE("X3P files of x3ptools read to the points, spacing and heights they st
     // longer matches main.xml, so it is refused unless the checksums are waived.
     CHECK_THROWS_WITH_AS(read_measured_map(data("csafe-logo.x3p")),
                          doctest::Contains("does not match its MD5 checksum"), std::runtime_error);
-    const MeasuredMap logo = read_measured_map(data("csafe-logo.x3p"), {0, false});
+    const MeasuredMap logo = read_measured_map(data("csafe-logo.x3p"), {0, "um", false});
     CHECK(logo.format == "x3p");
     CHECK(logo.nx == 741);
     CHECK(logo.ny == 419);
@@ -138,10 +138,9 @@ TEST_CASE("Damaged and truncated maps are refused with the file and the reason")
     altered[100] ^= 1;
     rezip(data("testing.x3p"), dir / "altered.x3p", "bindata/data.bin", altered);
     CHECK_THROWS_WITH_AS(read_measured_map((dir / "altered.x3p").string()),
-                         doctest::Contains("data.bin' does not match its MD5"),
-                         std::runtime_error);
+                         doctest::Contains("data.bin' does not match its MD5"), std::runtime_error);
     rezip(data("testing.x3p"), dir / "short.x3p", "bindata/data.bin", altered.substr(0, 800));
-    CHECK_THROWS_WITH_AS(read_measured_map((dir / "short.x3p").string(), {0, false}),
+    CHECK_THROWS_WITH_AS(read_measured_map((dir / "short.x3p").string(), {0, "um", false}),
                          doctest::Contains("holds 800 bytes"), std::runtime_error);
     // A truncated SDF, and one with a value that is not a number.
     std::string sdf = bytes_of(data("iso_25178_71_example.sdf"));
@@ -205,15 +204,23 @@ TEST_CASE("GSF and binary SDF files as their specifications lay them out, and pl
     write_bytes(dir / "map.csv", "# heights, um\n1,2,3\n4,,6\n");
     CHECK_THROWS_WITH_AS(read_measured_map((dir / "map.csv").string()),
                          doctest::Contains("surface.input_spacing"), std::runtime_error);
-    const MeasuredMap c = read_measured_map((dir / "map.csv").string(), {0.25, true});
+    const MeasuredMap c = read_measured_map((dir / "map.csv").string(), {0.25, "um", true});
     CHECK(c.format == "matrix");
     CHECK(c.nx == 3);
     CHECK(c.ny == 2);
     CHECK(c.dx == 0.25);
     CHECK(std::isnan(c.at(1, 1)));
     CHECK(c.at(2, 1) == 6);
+    // In nanometres (surface.input_unit): spacing and heights converted to micrometres alike.
+    const MeasuredMap n = read_measured_map((dir / "map.csv").string(), {250, "nm", true});
+    CHECK(n.dx == doctest::Approx(0.25));
+    CHECK(n.at(2, 1) == doctest::Approx(0.006));
+    CHECK(n.note.find("in nm") != std::string::npos);
+    CHECK_THROWS_WITH_AS(read_measured_map((dir / "map.csv").string(), {1, "inch", true}),
+                         doctest::Contains("surface.input_unit 'inch' is not a length unit"),
+                         std::runtime_error);
     write_bytes(dir / "ragged.txt", "1 2 3\n4 5\n");
-    CHECK_THROWS_WITH_AS(read_measured_map((dir / "ragged.txt").string(), {1, true}),
+    CHECK_THROWS_WITH_AS(read_measured_map((dir / "ragged.txt").string(), {1, "um", true}),
                          doctest::Contains("ragged.txt:2: 2 values; the rows above have 3"),
                          std::runtime_error);
     fs::remove_all(dir);
@@ -260,9 +267,9 @@ TEST_CASE("The Gaussian high-pass transmits each wavelength as ISO 16610 states"
     // 1 - exp(-pi (alpha lc / lambda)^2), a constant nothing.
     const int nx = 96, ny = 64;
     const double dx = 0.5;
-    const int kx = 6, ky = 40;                 // half-periods across the map
-    const double lx = 2 * nx * dx / kx;        // 16
-    const double ly = 2 * ny * dx / ky;        // 1.6
+    const int kx = 6, ky = 40;          // half-periods across the map
+    const double lx = 2 * nx * dx / kx; // 16
+    const double ly = 2 * ny * dx / ky; // 1.6
     auto wave = [&](int x, int y, double a, double b) {
         return a * std::cos(M_PI * kx * (x + 0.5) / nx) + b * std::cos(M_PI * ky * (y + 0.5) / ny);
     };

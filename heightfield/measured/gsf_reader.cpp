@@ -15,14 +15,11 @@ namespace gonio {
 namespace {
 const std::string kMagic = "Gwyddion Simple Field 1.0\n";
 
-// Micrometres per unit of a GSF length unit (SI base units, as Gwyddion writes them).
-double micrometres_per(const std::string& unit, const std::string& path, const char* key) {
-    if (unit.empty() || unit == "m") return 1e6;
-    if (unit == "mm") return 1e3;
-    if (unit == "um" || unit == "µm") return 1;
-    if (unit == "nm") return 1e-3;
+// Micrometres per unit of a GSF length unit (SI base units, as Gwyddion writes them; none is m).
+double gsf_micrometres_per(const std::string& unit, const std::string& path, const char* key) {
+    if (const double um = micrometres_per(unit.empty() ? "m" : unit); um > 0) return um;
     throw std::runtime_error(path + ": GSF " + std::string(key) + " " + quoted(unit) +
-                             " is not a length (allowed: m, mm, um, nm)");
+                             " is not a length (allowed: " + kLengthUnits + ")");
 }
 
 MeasuredMap read_gsf(const std::string& path, const MeasuredReadOptions&) {
@@ -40,8 +37,8 @@ MeasuredMap read_gsf(const std::string& path, const MeasuredReadOptions&) {
     const double xres = number("XRes", {}), yres = number("YRes", {});
     m.nx = int(std::min(std::max(xres, 0.0), 1e9));
     m.ny = int(std::min(std::max(yres, 0.0), 1e9));
-    const double lateral = micrometres_per(fields["XYUnits"], path, "XYUnits");
-    const double vertical = micrometres_per(fields["ZUnits"], path, "ZUnits");
+    const double lateral = gsf_micrometres_per(fields["XYUnits"], path, "XYUnits");
+    const double vertical = gsf_micrometres_per(fields["ZUnits"], path, "ZUnits");
     m.dx = m.nx > 0 ? number("XReal", 1.0) / m.nx * lateral : 0;
     m.dy = m.ny > 0 ? number("YReal", 1.0) / m.ny * lateral : 0;
     check_map_shape(m, path);

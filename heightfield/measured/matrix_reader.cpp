@@ -1,7 +1,7 @@
 // A plain matrix of heights: one row of the map (constant y) per line, values separated by
 // whitespace, commas or semicolons; '#' starts a comment; nan, NaN or an empty CSV field is a
-// missing point. It has no spacing of its own: surface.input_spacing gives it, and the heights
-// are taken in the same unit (micrometres).
+// missing point. It has no spacing or unit of its own: surface.input_spacing gives the spacing,
+// surface.input_unit the unit of both (micrometres unless set).
 #include "heightfield/measured/measured_map.h"
 
 #include <cmath>
@@ -14,7 +14,11 @@ namespace {
 MeasuredMap read_matrix(const std::string& path, const MeasuredReadOptions& options) {
     if (!(options.matrix_spacing > 0))
         throw std::runtime_error(path + ": a plain matrix of heights has no spacing: set "
-                                        "surface.input_spacing (micrometres)");
+                                        "surface.input_spacing (in surface.input_unit)");
+    const double um = micrometres_per(options.matrix_unit);
+    if (!(um > 0))
+        throw std::runtime_error(path + ": surface.input_unit " + quoted(options.matrix_unit) +
+                                 " is not a length unit (allowed: " + kLengthUnits + ")");
     const std::string bytes = read_file_bytes(path);
     std::vector<double> values;
     int columns = -1, rows = 0, line_number = 0;
@@ -55,11 +59,13 @@ MeasuredMap read_matrix(const std::string& path, const MeasuredReadOptions& opti
     MeasuredMap m;
     m.nx = std::max(columns, 0);
     m.ny = rows;
-    m.dx = m.dy = options.matrix_spacing;
+    m.dx = m.dy = options.matrix_spacing * um;
     check_map_shape(m, path);
     m.z = std::move(values);
+    if (um != 1)
+        for (double& z : m.z) z *= um;
     m.unit = kMeasuredUnit;
-    m.note = "plain matrix, heights and surface.input_spacing in micrometres";
+    m.note = "plain matrix, heights and surface.input_spacing in " + options.matrix_unit;
     return m;
 }
 } // namespace

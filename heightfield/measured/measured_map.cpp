@@ -12,6 +12,14 @@
 
 namespace gonio {
 
+double micrometres_per(const std::string& unit) {
+    if (unit == "m") return 1e6;
+    if (unit == "mm") return 1e3;
+    if (unit == "um" || unit == "µm") return 1;
+    if (unit == "nm") return 1e-3;
+    return 0;
+}
+
 const std::vector<const MeasuredFormat*>& measured_formats() {
     // Content first: the formats with magic bytes before the plain matrix, which has none.
     static const std::vector<const MeasuredFormat*> all = {

@@ -29,8 +29,9 @@ struct MeasuredMap {
 
 // What a reader needs besides the file: a plain matrix has no spacing of its own.
 struct MeasuredReadOptions {
-    double matrix_spacing = 0;    // surface.input_spacing (micrometres); 0 when not given
-    bool verify_checksums = true; // surface.input_checksums: refuse files whose checksums fail
+    double matrix_spacing = 0;      // surface.input_spacing, in matrix_unit; 0 when not given
+    std::string matrix_unit = "um"; // surface.input_unit: a plain matrix's length unit
+    bool verify_checksums = true;   // surface.input_checksums: refuse files whose checksums fail
 };
 
 struct MeasuredFormat {
@@ -66,6 +67,11 @@ std::map<std::string, std::string> header_fields(const std::string& text);
 double header_number(const std::map<std::string, std::string>& fields, const std::string& name,
                      const std::string& path, const char* format,
                      std::optional<double> fallback = std::nullopt);
+// The length units a file may state (m, mm, um or µm, nm) and micrometres per unit; 0 for any
+// other.
+double micrometres_per(const std::string& unit);
+inline const char* const kLengthUnits = "m, mm, um, nm";
+
 // A map's size and spacing checked (positive, finite, at most 2^15 per side) and z sized.
 void check_map_shape(MeasuredMap& m, const std::string& path);
 
