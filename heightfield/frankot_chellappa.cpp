@@ -19,15 +19,6 @@ void tbb_parallel_loop(void* (*work)(char*), char* jobdata, size_t elsize, int n
 }
 } // namespace
 
-std::mutex& fftwf_planner() {
-    static std::mutex m;
-    return m;
-}
-
-std::mutex& fftw_planner() {
-    static std::mutex m;
-    return m;
-}
 
 void init_fftw_threads() {
     static std::once_flag once;

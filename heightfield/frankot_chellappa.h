@@ -7,6 +7,8 @@
 // (heightfield.h); R19 Eq. 21 is its continuous limit, and the central differences of R19 Eq. 22
 // would leave a null space at the Nyquist frequency. Plans are made once (FFTW_ESTIMATE, so they do
 // not depend on timing) and reused.
+#include "heightfield/fftw_planner.h"
+
 #include <fftw3.h>
 #include <mutex>
 #include <vector>
@@ -57,11 +59,5 @@ class FrankotChellappa {
 
 // Calls fftwf_init_threads once; safe to call repeatedly.
 void init_fftw_threads();
-
-// FFTW's planner is not thread-safe (only fftwf_execute is): every single-precision plan is made
-// and destroyed under this lock, since an ensemble makes its next surface while it traces.
-std::mutex& fftwf_planner();
-// The same for double-precision plans (tabulated NDFs, the measured maps' Gaussian filter).
-std::mutex& fftw_planner();
 
 } // namespace gonio

@@ -35,6 +35,7 @@ double median_abs(std::vector<float>& v) {
 // Lag where a 1-D autocorrelation profile first falls below 1/e (linear interpolation).
 double correlation_length(const std::vector<float>& acf, int n, bool along_x) {
     const double e = std::exp(-1.0);
+    if (!(acf[0] > 0)) return 0; // a flat map: no correlation to measure
     for (int k = 1; k <= n / 2; ++k) {
         const double a = along_x ? acf[k - 1] : acf[size_t(k - 1) * n];
         const double b = along_x ? acf[k] : acf[size_t(k) * n];

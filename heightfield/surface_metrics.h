@@ -24,7 +24,8 @@ struct SurfaceMetrics {
     double target_alpha_x = 0,
            target_alpha_y = 0; // 0 when the NDF has no stretch (not shape-invariant)
     // Heights: RMS, histogram (64 bins over [min, max]), autocorrelation length along x and y (the
-    // lag where the autocorrelation falls to 1/e, in the units of the spacing).
+    // lag where the autocorrelation falls to 1/e, in the units of the spacing; half the map when
+    // it never does, 0 for a flat map).
     double height_rms = 0, height_min = 0, height_max = 0;
     std::vector<double> height_histogram;
     double correlation_length_x = 0, correlation_length_y = 0;

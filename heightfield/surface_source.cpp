@@ -72,7 +72,8 @@ HeightField read_input_map(const SurfaceSpec& spec, std::vector<std::string>& re
     const bool exr = &format == &exr_map_format();
     // OpenEXR maps (gonio's own among them) are read exactly as stored unless asked otherwise.
     if (exr && !spec.prepare_asked) return read_height_exr(spec.input);
-    MeasuredMap map = format.read(spec.input, {spec.input_spacing, spec.input_unit, spec.input_checksums});
+    MeasuredMap map =
+        format.read(spec.input, {spec.input_spacing, spec.input_unit, spec.input_checksums});
     map.format = format.name;
     MapPreparation p;
     p.level = spec.level == "auto" ? (exr ? Levelling::none : Levelling::plane)

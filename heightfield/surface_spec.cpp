@@ -55,7 +55,8 @@ const Key kMaxMissing = Key::number("max_missing", {0, 0.9},
 const Key kHighPass = Key::number("high_pass", {0, 1e12},
                                   "input maps: the cut-off wavelength of a Gaussian high-pass "
                                   "(ISO 16610-61) removing the form and waviness longer than it, "
-                                  "in the map's length unit (micrometres; 0: none)")
+                                  "in micrometres (whatever surface.input_unit; an OpenEXR "
+                                  "map's own unit) (0: none)")
                           .fallback(0.0);
 const Key kInputSpacing = Key::number("input_spacing", {1e-9, 1e9, true, false},
                                       "input maps: the spacing of a plain matrix of heights, in "

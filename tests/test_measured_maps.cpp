@@ -1,6 +1,7 @@
 // Measured height maps (heightfield/measured/): the readers on files gonio did not write (X3P from
 // x3ptools, the ISO 25178-71 SDF example; tests/data/measured/README.md), damaged files refused,
 // and the preparation steps checked on maps whose answer is known.
+#include "core/config_error.h"
 #include "heightfield/exr_io.h"
 #include "heightfield/generate.h"
 #include "heightfield/measured/gaussian_filter.h"
@@ -308,8 +309,8 @@ TEST_CASE("The Gaussian high-pass transmits each wavelength as ISO 16610 states"
                         .epsilon(1e-5)); // float heights
     p.high_pass = 0.9;
     CHECK_THROWS_WITH_AS(prepare_measured_map(m, p, "waves"),
-                         doctest::Contains("waves: surface.high_pass 0.9 is under two samples"),
-                         std::runtime_error);
+                         doctest::Contains("waves: key 'surface.high_pass': 0.9 is under two"),
+                         ConfigError);
 }
 
 TEST_CASE("gonio's own OpenEXR maps are read exactly as before unless a key asks") {
@@ -367,4 +368,24 @@ TEST_CASE("An anisotropic surface's closest distribution along x and y is its ow
     CHECK(g.ggx_xy.distance < 0.5 * g.ggx.distance); // the isotropic fit cannot follow it
     CHECK(g.major_axis_deg == doctest::Approx(90).epsilon(0.02));
     CHECK(g.best_xy().ndf_toml().find("{ type = \"ggx\", alpha_x = 0.1") == 0);
+}
+
+TEST_CASE("A surface smoother than the metric resolves has no fit, and a flat one no correlation") {
+    // Heights of RMS slope ~0.003: every facet in the metric's central cell, where GGX and
+    // Beckmann narrower than 0.011 cannot be integrated: no fit, said so.
+    HeightField s(64, 1.0);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x)
+            s.h[size_t(y) * 64 + x] = float(0.01 * std::sin(0.7 * x) * std::cos(0.3 * y));
+    const SurfaceCharacter c = characterise_surface(s);
+    CHECK(c.unresolved);
+    CHECK(c.lowest_alpha == doctest::Approx(0.0112).epsilon(0.01));
+    CHECK(c.lines().back().find("closest analytic NDFs: none") == 0);
+    CHECK(c.summary().find("nan") == std::string::npos);
+
+    const SurfaceCharacter flat = characterise_surface(HeightField(32, 1.0));
+    CHECK(flat.unresolved);
+    CHECK(flat.correlation_x == 0);
+    CHECK(flat.summary().find("inf") == std::string::npos);
+    CHECK(flat.alpha_major == 0);
 }

@@ -125,14 +125,18 @@ int surface(const CommonOptions& o) {
             attrs.numbers["gonio_alpha_major"] = character->alpha_major;
             attrs.numbers["gonio_alpha_minor"] = character->alpha_minor;
             attrs.numbers["gonio_major_axis_deg"] = character->major_axis_deg;
-            for (const AnalyticFit* f : {&character->ggx, &character->beckmann}) {
-                attrs.numbers["gonio_fit_" + f->family + "_alpha"] = f->alpha_x;
-                attrs.numbers["gonio_fit_" + f->family + "_distance"] = f->distance;
-            }
-            for (const AnalyticFit* f : {&character->ggx_xy, &character->beckmann_xy}) {
-                attrs.numbers["gonio_fit_" + f->family + "_alpha_x"] = f->alpha_x;
-                attrs.numbers["gonio_fit_" + f->family + "_alpha_y"] = f->alpha_y;
-                attrs.numbers["gonio_fit_" + f->family + "_xy_distance"] = f->distance;
+            attrs.numbers["gonio_correlation_x"] = character->correlation_x;
+            attrs.numbers["gonio_correlation_y"] = character->correlation_y;
+            if (!character->unresolved) {
+                for (const AnalyticFit* f : {&character->ggx, &character->beckmann}) {
+                    attrs.numbers["gonio_fit_" + f->family + "_alpha"] = f->alpha_x;
+                    attrs.numbers["gonio_fit_" + f->family + "_distance"] = f->distance;
+                }
+                for (const AnalyticFit* f : {&character->ggx_xy, &character->beckmann_xy}) {
+                    attrs.numbers["gonio_fit_" + f->family + "_alpha_x"] = f->alpha_x;
+                    attrs.numbers["gonio_fit_" + f->family + "_alpha_y"] = f->alpha_y;
+                    attrs.numbers["gonio_fit_" + f->family + "_xy_distance"] = f->distance;
+                }
             }
         }
         // The fidelity metrics travel with the surface.
@@ -187,25 +191,15 @@ int surface(const CommonOptions& o) {
             m.alpha_eff_x, m.alpha_eff_y, m.alpha_rms_x, m.alpha_rms_y);
         if (m.target_alpha_x > 0)
             std::printf("; target %.4f %.4f", m.target_alpha_x, m.target_alpha_y);
-        std::printf("\n  heights: RMS %.4g, range [%.4g, %.4g], correlation length x %.3g y %.3g\n",
-                    m.height_rms, m.height_min, m.height_max, m.correlation_length_x,
-                    m.correlation_length_y);
-        if (character) {
-            std::printf("  slopes: sqrt(2) RMS %.4f along %.1f deg, %.4f across (anisotropy "
-                        "%.3g)\n",
-                        character->alpha_major, character->major_axis_deg, character->alpha_minor,
-                        character->alpha_minor > 0 ? character->alpha_major / character->alpha_minor
-                                                   : INFINITY);
-            const SurfaceCharacter& k = *character;
-            std::printf("  closest analytic NDFs (TV distance): ggx alpha %.4f (%.4f), beckmann "
-                        "alpha %.4f (%.4f)\n",
-                        k.ggx.alpha_x, k.ggx.distance, k.beckmann.alpha_x, k.beckmann.distance);
-            std::printf("  along x and y: ggx %.4f %.4f (%.4f), beckmann %.4f %.4f (%.4f)\n",
-                        k.ggx_xy.alpha_x, k.ggx_xy.alpha_y, k.ggx_xy.distance,
-                        k.beckmann_xy.alpha_x, k.beckmann_xy.alpha_y, k.beckmann_xy.distance);
-            std::printf("  closest: ndf = %s (isotropic: ndf = %s)\n",
-                        k.best_xy().ndf_toml().c_str(), k.best().ndf_toml().c_str());
-        }
+        // A correlation length of half the map never fell below 1/e: it is at least that.
+        const double cap = 0.5 * surface.n * surface.spacing;
+        std::printf("\n  heights: RMS %.4g, range [%.4g, %.4g], correlation length x %s%.3g y "
+                    "%s%.3g\n",
+                    m.height_rms, m.height_min, m.height_max,
+                    m.correlation_length_x >= cap ? ">= " : "", m.correlation_length_x,
+                    m.correlation_length_y >= cap ? ">= " : "", m.correlation_length_y);
+        if (character)
+            for (const std::string& line : character->lines()) std::printf("  %s\n", line.c_str());
         std::printf("  wrote %s, %s, %s, %s\n", out.c_str(), sibling(out, "_normals.exr").c_str(),
                     sibling(out, "_ndf.exr").c_str(), sibling(out, "_ndf.csv").c_str());
     }

@@ -1,12 +1,36 @@
 #include "heightfield/measured/gaussian_filter.h"
 
-#include "heightfield/frankot_chellappa.h"
+#include "heightfield/fftw_planner.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fftw3.h>
-#include <mutex>
+#include <memory>
+#include <new>
+#include <stdexcept>
 
 namespace gonio {
+
+namespace {
+struct FftwFree {
+    void operator()(double* p) const { fftw_free(p); }
+};
+// A plan destroyed under the planner's lock, whatever leaves the scope.
+struct Plan {
+    fftw_plan plan = nullptr;
+    Plan(int ny, int nx, double* data, fftw_r2r_kind kind) {
+        std::lock_guard<std::mutex> lock(fftw_planner());
+        plan = fftw_plan_r2r_2d(ny, nx, data, data, kind, kind, FFTW_ESTIMATE);
+        if (!plan) throw std::runtime_error("FFTW planning failed");
+    }
+    ~Plan() {
+        std::lock_guard<std::mutex> lock(fftw_planner());
+        fftw_destroy_plan(plan);
+    }
+    Plan(const Plan&) = delete;
+    Plan& operator=(const Plan&) = delete;
+};
+} // namespace
 
 double gaussian_transmission(double frequency, double cutoff) {
     const double alpha = std::sqrt(std::log(2.0) / M_PI);
@@ -15,15 +39,11 @@ double gaussian_transmission(double frequency, double cutoff) {
 }
 
 void gaussian_high_pass(std::vector<double>& z, int nx, int ny, double spacing, double cutoff) {
-    double* c = fftw_alloc_real(z.size());
-    fftw_plan forward, backward;
-    {
-        std::lock_guard<std::mutex> lock(fftw_planner());
-        forward = fftw_plan_r2r_2d(ny, nx, c, c, FFTW_REDFT10, FFTW_REDFT10, FFTW_ESTIMATE);
-        backward = fftw_plan_r2r_2d(ny, nx, c, c, FFTW_REDFT01, FFTW_REDFT01, FFTW_ESTIMATE);
-    }
-    std::copy(z.begin(), z.end(), c);
-    fftw_execute(forward);
+    std::unique_ptr<double[], FftwFree> c(fftw_alloc_real(z.size()));
+    if (!c) throw std::bad_alloc();
+    const Plan forward(ny, nx, c.get(), FFTW_REDFT10), backward(ny, nx, c.get(), FFTW_REDFT01);
+    std::copy(z.begin(), z.end(), c.get());
+    fftw_execute(forward.plan);
     // Coefficient k of the cosine basis is frequency k / (2 n spacing) (the mirror extension's
     // period is 2n); the areal Gaussian is the product of the two axes' transmissions.
     std::vector<double> hx(static_cast<size_t>(nx)), hy(static_cast<size_t>(ny));
@@ -35,14 +55,8 @@ void gaussian_high_pass(std::vector<double>& z, int nx, int ny, double spacing, 
     for (int y = 0; y < ny; ++y)
         for (int x = 0; x < nx; ++x)
             c[size_t(y) * nx + x] *= (1.0 - hx[size_t(x)] * hy[size_t(y)]) * norm;
-    fftw_execute(backward);
-    std::copy(c, c + z.size(), z.begin());
-    {
-        std::lock_guard<std::mutex> lock(fftw_planner());
-        fftw_destroy_plan(forward);
-        fftw_destroy_plan(backward);
-    }
-    fftw_free(c);
+    fftw_execute(backward.plan);
+    std::copy(c.get(), c.get() + z.size(), z.begin());
 }
 
 } // namespace gonio

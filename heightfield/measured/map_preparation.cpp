@@ -1,5 +1,6 @@
 #include "heightfield/measured/map_preparation.h"
 
+#include "core/config_error.h"
 #include "heightfield/measured/gaussian_filter.h"
 
 #include <algorithm>
@@ -216,13 +217,17 @@ PreparedMap prepare_measured_map(const MeasuredMap& map, const MapPreparation& p
                                  " along y): gonio's height fields need one spacing");
     if (p.high_pass > 0) {
         // Before the square cut, so that the whole map (not the cut's edges) holds the form.
-        char text[200];
+        char text[240];
         if (p.high_pass < 2 * m.dx) {
-            std::snprintf(text, sizeof text,
-                          ": surface.high_pass %g is under two samples of spacing %g; allowed: 0 "
-                          "(none) or at least %g, in the map's length unit",
-                          p.high_pass, m.dx, 2 * m.dx);
-            throw std::runtime_error(path + text);
+            // A value the config gave that this map cannot take: a configuration error (exit 2).
+            std::snprintf(
+                text, sizeof text,
+                "%g is under two samples of the map's spacing %g; allowed: 0 (none) or at "
+                "least %g, in %s",
+                p.high_pass, m.dx, 2 * m.dx,
+                m.unit.empty() ? "the map's own length unit"
+                               : "micrometres (whatever surface.input_unit)");
+            throw ConfigError(path, -1, "surface.high_pass", text);
         }
         const double before = rms(m.z);
         gaussian_high_pass(m.z, m.nx, m.ny, m.dx, p.high_pass);

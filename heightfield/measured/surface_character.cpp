@@ -3,50 +3,57 @@
 #include "heightfield/ndf/beckmann.h"
 #include "heightfield/ndf/ggx.h"
 #include "heightfield/surface_metrics.h"
+#include "sensor/beckers_sensor.h"
 
 #include <cmath>
+#include <cstdarg>
 #include <cstdio>
 #include <functional>
 
 namespace gonio {
 
 namespace {
-constexpr double kLowest = 1e-3, kHighest = 20; // the roughness searched
+constexpr double kHighest = 20; // the largest roughness searched
 
-// Golden-section search of the x in [a, b] minimising f, to `tolerance` (f is unimodal here).
+// Golden-section search of the x in [a, b] minimising f, to `tolerance`; the best point it
+// evaluated (f is unimodal in log alpha for these families where the cells resolve them).
 double golden_minimum(const std::function<double(double)>& f, double a, double b,
                       double tolerance) {
     const double g = (std::sqrt(5.0) - 1) / 2;
     double c = b - g * (b - a), d = a + g * (b - a);
     double fc = f(c), fd = f(d);
+    double best = fc <= fd ? c : d, best_f = std::min(fc, fd);
     for (int k = 0; k < 60 && b - a > tolerance; ++k) {
         if (fc < fd)
             b = d, d = c, fd = fc, c = b - g * (b - a), fc = f(c);
         else
             a = c, c = d, fc = fd, d = a + g * (b - a), fd = f(d);
+        if (fc < best_f) best = c, best_f = fc;
+        if (fd < best_f) best = d, best_f = fd;
     }
-    return 0.5 * (a + b);
+    return best;
 }
 
 // The isotropic alpha minimising the TV distance, by golden-section search of log alpha over
-// [1e-3, 20] (a bracket taken from the RMS slope would miss heavy-tailed maps, whose RMS slope
+// [lowest, 20] (a bracket taken from the RMS slope would miss heavy-tailed maps, whose RMS slope
 // far exceeds their typical one). Then alpha_x and alpha_y from it, by alternating searches of
-// one with the other held, over a factor of 4 either side, until neither moves by 0.1 %.
+// one with the other held, each over a factor of 4 either side of its last value, for at most 8
+// rounds or until neither moves by 0.1 %.
 template <class Family>
-void fit(const std::vector<double>& facets, int bins, const char* name, AnalyticFit& iso,
-         AnalyticFit& xy) {
+void fit(const std::vector<double>& facets, int bins, double lowest, const char* name,
+         AnalyticFit& iso, AnalyticFit& xy) {
     auto distance = [&](double ax, double ay) {
         return total_variation(facets, target_cell_mass(Family(ax, ay), bins));
     };
+    const double lo = std::log(lowest), hi = std::log(kHighest);
     const double log_alpha =
-        golden_minimum([&](double l) { return distance(std::exp(l), std::exp(l)); },
-                       std::log(kLowest), std::log(kHighest), 1e-4);
+        golden_minimum([&](double l) { return distance(std::exp(l), std::exp(l)); }, lo, hi, 1e-4);
     iso.family = xy.family = name;
     iso.alpha_x = iso.alpha_y = std::exp(log_alpha);
     iso.distance = distance(iso.alpha_x, iso.alpha_y);
 
     double lx = log_alpha, ly = log_alpha;
-    const double reach = std::log(4.0), lo = std::log(kLowest), hi = std::log(kHighest);
+    const double reach = std::log(4.0);
     for (int round = 0; round < 8; ++round) {
         const double x =
             golden_minimum([&](double l) { return distance(std::exp(l), std::exp(ly)); },
@@ -62,30 +69,60 @@ void fit(const std::vector<double>& facets, int bins, const char* name, Analytic
     xy.distance = distance(xy.alpha_x, xy.alpha_y);
     if (xy.distance > iso.distance) xy = iso; // never worse than the isotropic fit
 }
-} // namespace
 
-std::string AnalyticFit::ndf_toml() const {
-    char text[160];
-    if (isotropic())
-        std::snprintf(text, sizeof text, "{ type = \"%s\", alpha = %.4g }", family.c_str(),
-                      alpha_x);
-    else
-        std::snprintf(text, sizeof text, "{ type = \"%s\", alpha_x = %.4g, alpha_y = %.4g }",
-                      family.c_str(), alpha_x, alpha_y);
+std::string format(const char* pattern, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char* pattern, ...) {
+    char text[256];
+    va_list args;
+    va_start(args, pattern);
+    std::vsnprintf(text, sizeof text, pattern, args);
+    va_end(args);
     return text;
 }
 
+std::string length(double value, bool capped) {
+    return (capped ? ">= " : "") + format("%.4g", value);
+}
+} // namespace
+
+bool AnalyticFit::isotropic() const {
+    return std::abs(alpha_x - alpha_y) <= 1e-3 * std::max(alpha_x, alpha_y);
+}
+
+std::string AnalyticFit::ndf_toml() const {
+    if (isotropic())
+        return format("{ type = \"%s\", alpha = %.4g }", family.c_str(), 0.5 * (alpha_x + alpha_y));
+    return format("{ type = \"%s\", alpha_x = %.4g, alpha_y = %.4g }", family.c_str(), alpha_x,
+                  alpha_y);
+}
+
+std::vector<std::string> SurfaceCharacter::lines() const {
+    std::vector<std::string> out;
+    // The anisotropy is their ratio, where the slopes across are not all 0.
+    out.push_back(format("slopes: sqrt(2) RMS %.4f along %.1f deg, %.4f across", alpha_major,
+                         major_axis_deg, alpha_minor) +
+                  (alpha_minor > 0 ? format(" (anisotropy %.3g)", alpha_major / alpha_minor) : ""));
+    if (unresolved) {
+        out.push_back(format("closest analytic NDFs: none: 99 %% of the facets are in the metric's "
+                             "central cell, smoother than it resolves (alpha < %.3g)",
+                             lowest_alpha));
+        return out;
+    }
+    out.push_back(format("closest analytic NDFs (TV distance): ggx alpha %.4f (%.4f), beckmann "
+                         "alpha %.4f (%.4f)",
+                         ggx.alpha_x, ggx.distance, beckmann.alpha_x, beckmann.distance));
+    out.push_back(format("along x and y: ggx %.4f %.4f (%.4f), beckmann %.4f %.4f (%.4f)",
+                         ggx_xy.alpha_x, ggx_xy.alpha_y, ggx_xy.distance, beckmann_xy.alpha_x,
+                         beckmann_xy.alpha_y, beckmann_xy.distance));
+    out.push_back("closest: ndf = " + best_xy().ndf_toml() +
+                  " (isotropic: ndf = " + best().ndf_toml() + ")");
+    return out;
+}
+
 std::string SurfaceCharacter::summary() const {
-    char text[480];
-    std::snprintf(text, sizeof text,
-                  "principal slopes: sqrt(2) RMS %.4f along %.1f deg, %.4f across; "
-                  "correlation length x %.4g y %.4g; closest "
-                  "analytic (TV distance): ggx alpha %.4f (%.4f), beckmann alpha %.4f (%.4f); "
-                  "along x and y: ggx %.4f %.4f (%.4f), beckmann %.4f %.4f (%.4f)",
-                  alpha_major, major_axis_deg, alpha_minor, correlation_x, correlation_y,
-                  ggx.alpha_x, ggx.distance, beckmann.alpha_x, beckmann.distance, ggx_xy.alpha_x,
-                  ggx_xy.alpha_y, ggx_xy.distance, beckmann_xy.alpha_x, beckmann_xy.alpha_y,
-                  beckmann_xy.distance);
+    std::string text = "correlation length: x " + length(correlation_x, correlation_x_capped) +
+                       ", y " + length(correlation_y, correlation_y_capped);
+    for (const std::string& line : lines()) text += "; " + line;
     return text;
 }
 
@@ -110,10 +147,21 @@ SurfaceCharacter characterise_surface(const HeightField& s, int bins) {
     double axis = 0.5 * std::atan2(2 * sxy, sxx - syy) * 180 / M_PI;
     if (axis < 0) axis += 180;
     c.major_axis_deg = axis >= 180 ? axis - 180 : axis;
+
     correlation_lengths(s, c.correlation_x, c.correlation_y);
+    const double cap = 0.5 * s.n * s.spacing; // surface_metrics' "never fell below 1/e"
+    c.correlation_x_capped = c.correlation_x >= cap;
+    c.correlation_y_capped = c.correlation_y >= cap;
+
+    // The central cell of `bins` equal-area cells is the cap 1 - cos(theta) = 1 / bins, i.e.
+    // tan(theta) ~ sqrt(2 / bins); its 2 x 8 Gauss-Legendre nodes in cos(theta) follow GGX and
+    // Beckmann to 0.1 % down to a quarter of that (alpha 0.011 at 1000 cells; 0.003: 30 % off).
+    const BeckersSensor sensor(bins);
+    c.lowest_alpha = 0.25 * std::sqrt(2.0 / bins);
     const std::vector<double> facets = facet_cell_mass(s, bins);
-    fit<Ggx>(facets, bins, "ggx", c.ggx, c.ggx_xy);
-    fit<Beckmann>(facets, bins, "beckmann", c.beckmann, c.beckmann_xy);
+    c.unresolved = facets[size_t(sensor.lookup({0, 0, 1}))] >= 0.99;
+    fit<Ggx>(facets, bins, c.lowest_alpha, "ggx", c.ggx, c.ggx_xy);
+    fit<Beckmann>(facets, bins, c.lowest_alpha, "beckmann", c.beckmann, c.beckmann_xy);
     return c;
 }
 

@@ -4,7 +4,7 @@
 #include "core/quadrature.h"
 #include "core/random.h"
 #include "heightfield/exr_io.h"
-#include "heightfield/frankot_chellappa.h"
+#include "heightfield/fftw_planner.h"
 #include "heightfield/ndf/ndf_family.h"
 #include "heightfield/ndf/piecewise_linear.h"
 
