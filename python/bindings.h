@@ -70,7 +70,8 @@ inline Vec3 vec3(const double* p) {
 struct Surface {
     HeightField field;
     GenerationLog log;
-    std::string origin; // "generated", "cache", "loaded", "array"
+    std::string origin;                   // "generated", "cache", "loaded", "array"
+    std::vector<std::string> preparation; // a measured map's steps (map_preparation.h)
 };
 
 // Surface.masking and Surface.facet_ndf (masking_bindings.cpp).

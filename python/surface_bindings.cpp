@@ -3,6 +3,7 @@
 // metrics of heightfield/surface_metrics.h.
 #include "bindings.h"
 #include "core/threads.h"
+#include "heightfield/measured/surface_character.h"
 #include "heightfield/surface_metrics.h"
 #include "heightfield/surface_source.h"
 
@@ -36,6 +37,41 @@ py::dict metrics_of(const Surface& s, const Ndf& ndf, int bins) {
     return d;
 }
 
+py::dict fit_of(const AnalyticFit& f) {
+    py::dict d;
+    d["family"] = f.family;
+    d["alpha"] = f.isotropic() ? py::object(py::float_(f.alpha_x))
+                               : py::object(py::make_tuple(f.alpha_x, f.alpha_y));
+    d["distance"] = f.distance;
+    d["ndf"] = f.ndf_toml();
+    return d;
+}
+
+py::dict character_of(const Surface& s, int bins) {
+    if (bins < 2 || bins > 1000000) throw py::value_error("character: bins must be in [2, 1e6]");
+    SurfaceCharacter c;
+    {
+        py::gil_scoped_release release;
+        c = characterise_surface(s.field, bins);
+    }
+    py::dict d;
+    d["alpha_principal"] = py::make_tuple(c.alpha_major, c.alpha_minor);
+    d["major_axis_deg"] = c.major_axis_deg;
+    d["correlation_length"] = py::make_tuple(c.correlation_x, c.correlation_y);
+    d["correlation_capped"] = py::make_tuple(c.correlation_x_capped, c.correlation_y_capped);
+    d["lowest_alpha"] = c.lowest_alpha;
+    d["unresolved"] = c.unresolved;
+    if (!c.unresolved) {
+        py::dict fits;
+        fits["ggx"] = fit_of(c.ggx), fits["beckmann"] = fit_of(c.beckmann);
+        fits["ggx_xy"] = fit_of(c.ggx_xy), fits["beckmann_xy"] = fit_of(c.beckmann_xy);
+        d["fits"] = fits;
+        d["closest"] = fit_of(c.best_xy());
+    }
+    d["lines"] = c.lines();
+    return d;
+}
+
 std::shared_ptr<Surface> generate(const SurfaceMaker& maker, std::optional<int> threads,
                                   const py::object& cache) {
     const CaseConfig& c = *maker.ref.c;
@@ -50,6 +86,7 @@ std::shared_ptr<Surface> generate(const SurfaceMaker& maker, std::optional<int> 
                                   worker_threads(thread_count(threads)), origin);
         s->log = origin.log;
         s->origin = origin.loaded ? "loaded" : origin.from_cache ? "cache" : "generated";
+        s->preparation = origin.preparation;
     }
     return s;
 }
@@ -95,6 +132,15 @@ void bind_surface(py::module_& m) {
             "Fidelity to a distribution: TV distance of the facet normals to D(m) cos(theta_m) "
             "on `bins` equal-area cells, effective roughness, height statistics, correlation "
             "lengths")
+        .def_property_readonly(
+            "preparation", [](const Surface& s) { return s.preparation; },
+            "a measured map's preparation, one line per step as gonio surface prints it (read, "
+            "missing, spikes, levelled, high-pass, filled, cropped); empty otherwise")
+        .def("character", &character_of, py::arg("bins") = 1000,
+             "What the surface is in the analytic models' terms (docs/measured-surfaces.md): "
+             "principal slopes and axis, correlation lengths, and the closest GGX and Beckmann "
+             "(isotropic and along x and y) by TV distance on `bins` equal-area cells; no "
+             "`fits` when it is smoother than the cells resolve")
         .def("__repr__", [](const Surface& s) {
             return "<gonio.Surface " + std::to_string(s.field.n) + "^2, spacing " +
                    py::str(py::float_(s.field.spacing)).cast<std::string>() + ", " + s.origin + ">";

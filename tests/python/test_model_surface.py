@@ -93,3 +93,23 @@ def test_surface_from_array():
         gonio.surface_from_array(np.zeros((4, 5)))
     with pytest.raises(ValueError, match="finite"):
         gonio.surface_from_array(np.full((4, 4), np.nan))
+
+
+def test_measured_surface_character_is_gonio_surfaces(tmp_path, cli, root):
+    # The shipped scan through Python: the same preparation steps and the same closest
+    # distributions as `gonio surface` prints for the case.
+    path = os.path.join(root, "configs", "measured_bullet_land.toml")
+    cfg = gonio.Config.load(path)
+    s = gonio.surface(cfg.cases[0]).generate(cache=False)
+    assert s.origin == "loaded" and s.n == 512
+    assert s.preparation[0].startswith("read: x3p, 918 x 256 points")
+    c = s.character()
+    printed = cli("surface", path, "--no-cache", "-o", str(tmp_path / "s.exr")).stdout
+    block = printed.split("case bullet_land_vs_ggx_xy")[0]
+    for line in c["lines"]:
+        assert "  " + line in block
+    assert c["closest"]["ndf"] == '{ type = "ggx", alpha_x = 0.1332, alpha_y = 0.1005 }'
+    assert c["fits"]["ggx"]["alpha"] == pytest.approx(0.116, abs=5e-5)
+    assert c["correlation_capped"] == (True, False)
+    flat = gonio.surface_from_array(np.zeros((16, 16))).character()
+    assert flat["unresolved"] and "fits" not in flat
