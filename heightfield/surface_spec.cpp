@@ -62,7 +62,7 @@ const Key kInputSpacing = Key::number("input_spacing", {1e-9, 1e9, true, false},
                                       "input maps: the spacing of a plain matrix of heights, in "
                                       "surface.input_unit (other formats carry their own)")
                               .note_default("—");
-const Key kInputUnit = Key::string("input_unit", {"m", "mm", "um", "nm"},
+const Key kInputUnit = Key::string("input_unit", {"m", "mm", "um", "µm", "nm"},
                                    "input maps: the length unit of a plain matrix's heights and "
                                    "of surface.input_spacing (other formats carry their own)")
                            .fallback("um");

@@ -43,6 +43,9 @@ py::dict fit_of(const AnalyticFit& f) {
     d["alpha"] = f.isotropic() ? py::object(py::float_(f.alpha_x))
                                : py::object(py::make_tuple(f.alpha_x, f.alpha_y));
     d["distance"] = f.distance;
+    d["at_bound"] = f.at_lowest    ? py::object(py::str("lowest"))
+                    : f.at_highest ? py::object(py::str("highest"))
+                                   : py::object(py::none());
     d["ndf"] = f.ndf_toml();
     return d;
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """A fuzzer of everything gonio reads: the shipped configs, a result file, part files, a
-checkpoint, a height map and third-party measured maps (X3P, SDF), each mutated with a fixed seed (bytes flipped, truncated,
+checkpoint, a height map and third-party measured maps (X3P, SDF, GSF), each mutated with a fixed seed (bytes flipped, truncated,
 overwritten; values made NaN, negative or out of range; datasets and attributes removed or
 reshaped; keys, tables and numbers of a config garbled) and handed to the command that reads it.
 
@@ -360,9 +360,10 @@ class Fuzzer:
     def measured_case(self, k):
         # A third-party map: X3P carries MD5 checksums, so a corruption it accepts must change
         # nothing gonio reads (the same report); SDF has none, so any outcome but a crash, a
-        # hang, a stray file or a malformed error is fine.
+        # hang, a stray file or a malformed error is fine; nor has GSF.
         d = self.case_dir(k)
-        name = self.rng.choice(["testing.x3p", "pyramid.x3p", "iso_25178_71_example.sdf"])
+        name = self.rng.choice(["testing.x3p", "pyramid.x3p", "iso_25178_71_example.sdf",
+                               "spm-tools-test.gsf"])
         shutil.copy(os.path.join(ROOT, "tests", "data", "measured", name), d)
         with open(os.path.join(d, "measured.toml"), "w") as f:
             f.write(f'[surface]\ninput = "{name}"\nmax_missing = 0.9\n[ndf]\ntype = "ggx"\n'

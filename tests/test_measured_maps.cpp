@@ -1,6 +1,6 @@
 // Measured height maps (heightfield/measured/): the readers on files gonio did not write (X3P from
-// x3ptools, the ISO 25178-71 SDF example; tests/data/measured/README.md), damaged files refused,
-// and the preparation steps checked on maps whose answer is known.
+// x3ptools, the ISO 25178-71 SDF example, spm-tools' GSF; tests/data/measured/README.md), damaged
+// files refused, and the preparation steps checked on maps whose answer is known.
 #include "core/config_error.h"
 #include "heightfield/exr_io.h"
 #include "heightfield/generate.h"
@@ -127,6 +127,56 @@ TEST_CASE("The ISO 25178-71 ASCII example reads to its points and scales") {
     CHECK(m.at(6, 3) == doctest::Approx(0.97986).epsilon(1e-12));
 }
 
+TEST_CASE("The GSF of spm-tools reads to the points, size and float32 heights it states") {
+    // spm-tools-test.gsf: 256 x 128 points, XReal 2e-05 m by YReal 1e-05 m, XYUnits and ZUnits
+    // m (its header), heights the little-endian float32 after a 152-byte header and 4 NULs.
+    const MeasuredMap m = read_measured_map(data("spm-tools-test.gsf"));
+    CHECK(m.format == "gsf");
+    REQUIRE(m.nx == 256);
+    REQUIRE(m.ny == 128);
+    CHECK(m.dx == doctest::Approx(0.078125).epsilon(1e-12)); // 20 um / 256, micrometres
+    CHECK(m.dy == doctest::Approx(0.078125).epsilon(1e-12)); // 10 um / 128
+    // Heights (micrometres) as numpy.frombuffer(..., '<f4') reads them, corners and an inside
+    // point.
+    CHECK(m.at(0, 0) == doctest::Approx(0.5758670909017383).epsilon(1e-12));
+    CHECK(m.at(255, 0) == doctest::Approx(0.6401826340152184).epsilon(1e-12));
+    CHECK(m.at(0, 127) == doctest::Approx(0.8215634466068877).epsilon(1e-12));
+    CHECK(m.at(100, 50) == doctest::Approx(0.7178282999120711).epsilon(1e-12));
+    CHECK(m.at(255, 127) == doctest::Approx(0.848683555432217).epsilon(1e-12));
+    double lo = INFINITY, hi = -INFINITY;
+    for (double z : m.z) lo = std::min(lo, z), hi = std::max(hi, z);
+    CHECK(lo == doctest::Approx(0.5758670909017383).epsilon(1e-12));
+    CHECK(hi == doctest::Approx(0.8533488085049612).epsilon(1e-12));
+    CHECK(m.note == "GSF, XYUnits 'm', ZUnits 'm' read as micrometres");
+
+    // Twice as wide as tall: the centred 128 x 128 square is kept, at the file's spacing.
+    MapPreparation p;
+    p.level = Levelling::none;
+    p.spikes = 0;
+    const PreparedMap square = prepare_measured_map(m, p, "spm-tools-test");
+    REQUIRE(square.surface.n == 128);
+    CHECK(square.missing_share == 0);
+    for (int y = 0; y < 128; y += 31)
+        for (int x = 0; x < 128; x += 29)
+            CHECK(square.surface.at(x, y) == doctest::Approx(m.at(x + 64, y)).epsilon(1e-6));
+
+    // Prepared as gonio surface does (plane levelled, spikes removed): its slopes' typical
+    // 0.003-0.007 (median) are narrower than the metric resolves, though their heavy tail keeps
+    // most facets out of its central cell. The GGX fit ends at the lowest alpha and says so;
+    // Beckmann's, wider, does not.
+    const SurfaceCharacter c = characterise_surface(prepare_measured_map(m, {}, "gsf").surface);
+    CAPTURE(c.summary());
+    REQUIRE(!c.unresolved);
+    CHECK(c.ggx.at_lowest);
+    CHECK(c.ggx.alpha_x == doctest::Approx(c.lowest_alpha).epsilon(1e-3));
+    CHECK(!c.beckmann.at_lowest);
+    CHECK(!c.beckmann.at_highest);
+    CHECK(c.best().family == "beckmann");
+    CHECK(c.summary().find("ggx: at the lowest alpha the metric resolves (0.0112)") !=
+          std::string::npos);
+    CHECK(c.summary().find("beckmann: at") == std::string::npos);
+}
+
 TEST_CASE("Damaged and truncated maps are refused with the file and the reason") {
     const fs::path dir = scratch();
     // A truncated X3P: not a zip any more.
@@ -217,6 +267,7 @@ TEST_CASE("GSF and binary SDF files as their specifications lay them out, and pl
     CHECK(n.dx == doctest::Approx(0.25));
     CHECK(n.at(2, 1) == doctest::Approx(0.006));
     CHECK(n.note.find("in nm") != std::string::npos);
+    CHECK(read_measured_map((dir / "map.csv").string(), {0.25, "µm", true}).at(2, 1) == 6);
     CHECK_THROWS_WITH_AS(read_measured_map((dir / "map.csv").string(), {1, "inch", true}),
                          doctest::Contains("surface.input_unit 'inch' is not a length unit"),
                          std::runtime_error);
@@ -382,6 +433,16 @@ TEST_CASE("A surface smoother than the metric resolves has no fit, and a flat on
     CHECK(c.lowest_alpha == doctest::Approx(0.0112).epsilon(0.01));
     CHECK(c.lines().back().find("closest analytic NDFs: none") == 0);
     CHECK(c.summary().find("nan") == std::string::npos);
+
+    // A fit at an end of the search says so: an alternating 0, 60 ridge (slopes +-60, beyond
+    // any GGX or Beckmann alpha searched) ends at the highest alpha.
+    HeightField steep(32, 1.0);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) steep.h[size_t(y) * 32 + x] = float(60 * ((x + y) % 2));
+    const SurfaceCharacter st = characterise_surface(steep);
+    CAPTURE(st.summary());
+    CHECK(st.ggx.at_highest);
+    CHECK(st.summary().find("ggx: at the highest alpha searched (20)") != std::string::npos);
 
     const SurfaceCharacter flat = characterise_surface(HeightField(32, 1.0));
     CHECK(flat.unresolved);

@@ -58,7 +58,7 @@ MeasuredMap read_gsf(const std::string& path, const MeasuredReadOptions&) {
     }
     m.unit = kMeasuredUnit;
     m.note = "GSF, XYUnits " + quoted(fields["XYUnits"]) + ", ZUnits " + quoted(fields["ZUnits"]) +
-             "' read as micrometres";
+             " read as micrometres";
     return m;
 }
 

@@ -15,7 +15,7 @@ namespace gonio {
 double micrometres_per(const std::string& unit) {
     if (unit == "m") return 1e6;
     if (unit == "mm") return 1e3;
-    if (unit == "um" || unit == "µm") return 1;
+    if (unit == "um" || unit == "µm" || unit == "μm") return 1; // micro sign or Greek mu
     if (unit == "nm") return 1e-3;
     return 0;
 }

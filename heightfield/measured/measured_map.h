@@ -70,7 +70,7 @@ double header_number(const std::map<std::string, std::string>& fields, const std
 // The length units a file may state (m, mm, um or µm, nm) and micrometres per unit; 0 for any
 // other.
 double micrometres_per(const std::string& unit);
-inline const char* const kLengthUnits = "m, mm, um, nm";
+inline const char* const kLengthUnits = "m, mm, um (or µm), nm";
 
 // A map's size and spacing checked (positive, finite, at most 2^15 per side) and z sized.
 void check_map_shape(MeasuredMap& m, const std::string& path);

@@ -9,6 +9,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <functional>
+#include <utility>
 
 namespace gonio {
 
@@ -51,6 +52,12 @@ void fit(const std::vector<double>& facets, int bins, double lowest, const char*
     iso.family = xy.family = name;
     iso.alpha_x = iso.alpha_y = std::exp(log_alpha);
     iso.distance = distance(iso.alpha_x, iso.alpha_y);
+    // Within 0.1 % of an end of the search (golden_minimum's tolerance is 0.01 %).
+    auto mark_ends = [&](AnalyticFit& f, double l1, double l2) {
+        f.at_lowest = std::min(l1, l2) < lo + 1e-3;
+        f.at_highest = std::max(l1, l2) > hi - 1e-3;
+    };
+    mark_ends(iso, log_alpha, log_alpha);
 
     double lx = log_alpha, ly = log_alpha;
     const double reach = std::log(4.0);
@@ -67,6 +74,7 @@ void fit(const std::vector<double>& facets, int bins, double lowest, const char*
     }
     xy.alpha_x = std::exp(lx), xy.alpha_y = std::exp(ly);
     xy.distance = distance(xy.alpha_x, xy.alpha_y);
+    mark_ends(xy, lx, ly);
     if (xy.distance > iso.distance) xy = iso; // never worse than the isotropic fit
 }
 
@@ -114,6 +122,17 @@ std::vector<std::string> SurfaceCharacter::lines() const {
     out.push_back(format("along x and y: ggx %.4f %.4f (%.4f), beckmann %.4f %.4f (%.4f)",
                          ggx_xy.alpha_x, ggx_xy.alpha_y, ggx_xy.distance, beckmann_xy.alpha_x,
                          beckmann_xy.alpha_y, beckmann_xy.distance));
+    // One line per family whose isotropic or x/y fit ends at an end of the search.
+    for (const auto& [iso, xy] : {std::pair{&ggx, &ggx_xy}, std::pair{&beckmann, &beckmann_xy}}) {
+        if (iso->at_lowest || xy->at_lowest)
+            out.push_back(format("%s: at the lowest alpha the metric resolves (%.4f); its closest "
+                                 "may be narrower still",
+                                 iso->family.c_str(), lowest_alpha));
+        if (iso->at_highest || xy->at_highest)
+            out.push_back(format("%s: at the highest alpha searched (%g); its closest may be "
+                                 "steeper still",
+                                 iso->family.c_str(), kHighest));
+    }
     out.push_back("closest: ndf = " + best_xy().ndf_toml() +
                   " (isotropic: ndf = " + best().ndf_toml() + ")");
     return out;

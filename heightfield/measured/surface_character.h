@@ -14,6 +14,9 @@ struct AnalyticFit {
     std::string family;              // ggx, beckmann
     double alpha_x = 0, alpha_y = 0; // equal for an isotropic fit
     double distance = 0; // total-variation distance of the facet normals to D(m) cos(theta_m)
+    // An alpha at the search's end: the least distance may lie beyond, where the metric's cells
+    // cannot follow the family (below) or no family member is steeper (above).
+    bool at_lowest = false, at_highest = false;
     // Within 0.1 %: printed as one alpha.
     bool isotropic() const;
     // The fit as a case's `ndf` table: { type = "ggx", alpha = 0.116 }.

@@ -111,5 +111,10 @@ def test_measured_surface_character_is_gonio_surfaces(tmp_path, cli, root):
     assert c["closest"]["ndf"] == '{ type = "ggx", alpha_x = 0.1332, alpha_y = 0.1005 }'
     assert c["fits"]["ggx"]["alpha"] == pytest.approx(0.116, abs=5e-5)
     assert c["correlation_capped"] == (True, False)
+    assert all(f["at_bound"] is None for f in c["fits"].values())
+    # Slopes of +-60 are steeper than any alpha the fit searches: it ends there, and says so.
+    steep = gonio.surface_from_array(60.0 * (np.indices((32, 32)).sum(axis=0) % 2)).character()
+    assert steep["fits"]["ggx"]["at_bound"] == "highest"
+    assert any(line.startswith("ggx: at the highest alpha") for line in steep["lines"])
     flat = gonio.surface_from_array(np.zeros((16, 16))).character()
     assert flat["unresolved"] and "fits" not in flat
