@@ -51,6 +51,22 @@ void FresnelTerm::eval(double cos_i, double* out) const {
     }
 }
 
+void FresnelTerm::scale(double cos_i, double* weight) const {
+    switch (kind_) {
+    case Kind::mirror:
+        return;
+    case Kind::dielectric:
+        for (int c = 0; c < channels_; ++c) weight[c] *= fresnel_dielectric(cos_i, real_[c]);
+        return;
+    case Kind::conductor:
+        for (int c = 0; c < channels_; ++c) weight[c] *= fresnel_conductor(cos_i, complex_[c]);
+        return;
+    case Kind::schlick:
+        for (int c = 0; c < channels_; ++c) weight[c] *= fresnel_schlick(cos_i, real_[c]);
+        return;
+    }
+}
+
 std::string FresnelTerm::describe() const {
     std::ostringstream s;
     s.precision(10);

@@ -27,6 +27,9 @@ class FresnelTerm {
     double schlick_f0(int c) const { return real_.at(size_t(c)); }
     // Reflectance for cos_i = i.m in [0, 1], one value per channel into out[0..channels).
     void eval(double cos_i, double* out) const;
+    // weight[c] *= reflectance of channel c: eval without a buffer (a traced ray's bounce, where
+    // a buffer per bounce cost an allocation for more than 16 channels).
+    void scale(double cos_i, double* weight) const;
     std::string describe() const;
 
   private:

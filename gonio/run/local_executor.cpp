@@ -43,7 +43,7 @@ RunResult run_local(const Config& cfg, const RunOptions& options, const Checkpoi
     auto sink = [&](const UnitId& id, UnitResult&& u) {
         if (file) { // first kept, then folded in (which frees its batches)
             ScopedPhase t(assembly.phases(id.case_index), Phase::checkpoint);
-            file->add({layout.number(id), id, u});
+            file->add(layout.number(id), id, u);
         }
         assembly.add(id, std::move(u));
     };

@@ -131,8 +131,29 @@ void unit_fields(IO& io, U& u, Count& count) {
 }
 } // namespace
 
+namespace {
+// The bytes serialise() writes, counted first: one allocation of the record instead of a
+// vector doubling (and copying) its way to hundreds of megabytes.
+struct Sizer {
+    std::uint64_t bytes = 0;
+    template <class T>
+    void put(const T&) {
+        bytes += sizeof(T);
+    }
+    void put(const std::string& s) { bytes += sizeof(std::uint64_t) + s.size(); }
+    void put(const std::vector<double>& v) {
+        bytes += sizeof(std::uint64_t) + v.size() * sizeof(double);
+    }
+};
+} // namespace
+
 std::vector<char> serialise(const UnitResult& u) {
+    Sizer size;
+    auto measure = [&](const auto& v) { size.put(v); };
+    auto measure_count = [&](const auto& v, std::uint64_t) { size.put(std::uint64_t(v.size())); };
+    unit_fields(measure, u, measure_count);
     Writer w;
+    w.out.reserve(size.bytes);
     auto io = [&](const auto& v) { w.put(v); };
     auto count = [&](const auto& v, std::uint64_t) { w.put(std::uint64_t(v.size())); };
     unit_fields(io, u, count);

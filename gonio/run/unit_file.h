@@ -34,6 +34,8 @@ class UnitFileWriter {
     UnitFileWriter& operator=(const UnitFileWriter&) = delete;
     // Adds a unit and flushes the file, so that it survives a kill.
     void add(const NumberedUnit& u);
+    // The same without a copy of the result (a spectral unit holds hundreds of megabytes).
+    void add(long long number, const UnitId& id, const UnitResult& result);
     void close();
     // Closes and removes the file (a run that failed leaves no unit file behind).
     void discard();
