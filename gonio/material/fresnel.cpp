@@ -31,12 +31,13 @@ double fresnel_conductor(double cos_i, std::complex<double> eta) {
     if (c == 0.0) return 1.0; // grazing: every conductor reflects all
     const double n = eta.real(), k = eta.imag(), s2 = 1.0 - c * c;
     const double u = n * n - k * k - s2, root = std::sqrt(u * u + 4.0 * n * n * k * k);
-    const double a2 = std::max(0.0, 0.5 * (root + u)), b2 = std::max(0.0, 0.5 * (root - u)), a = std::sqrt(a2);
+    const double a2 = std::max(0.0, 0.5 * (root + u)), b2 = std::max(0.0, 0.5 * (root - u)),
+                 a = std::sqrt(a2);
     const double ab = a2 + b2; // |n^2 - sin^2|
     const double rs = (ab - 2.0 * a * c + c * c) / (ab + 2.0 * a * c + c * c);
     // Rp / Rs with sin(theta) tan(theta) = s2 / c, times c^2 above and below: finite at grazing.
-    const double rp = rs * (ab * c * c - 2.0 * a * s2 * c + s2 * s2) /
-                      (ab * c * c + 2.0 * a * s2 * c + s2 * s2);
+    const double rp =
+        rs * (ab * c * c - 2.0 * a * s2 * c + s2 * s2) / (ab * c * c + 2.0 * a * s2 * c + s2 * s2);
     return std::min(1.0, 0.5 * (rs + rp));
 }
 
