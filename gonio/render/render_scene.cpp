@@ -1,4 +1,5 @@
 #include "gonio/render/render_scene.h"
+#include "gonio/trace/embree_device.h"
 
 #include <cmath>
 #include <limits>
@@ -60,7 +61,7 @@ RenderScene::RenderScene(RenderObject object) {
             },
             m.position, m.normal, m.tangent, m.index);
     }
-    device_ = rtcNewDevice(nullptr);
+    device_ = new_embree_device();
     if (!device_) throw std::runtime_error("Embree: cannot create a device");
     scene_ = rtcNewScene(device_);
     add(std::move(m));

@@ -4,6 +4,7 @@
 // triangle mesh. Embree splits every grid cell like a quad, into (v0, v1, v3) and (v2, v3, v1):
 // the two triangles of heightfield.h. The reference backend: the height-field traversal is held
 // against it hit for hit.
+#include "gonio/trace/embree_device.h"
 #include "gonio/trace/trace_backend.h"
 
 #include <algorithm>
@@ -51,7 +52,7 @@ class EmbreeBackend final : public TraceBackend {
     EmbreeBackend(const HeightField& s, const SceneBox& box)
         : box_(box), n_(s.n), inv_spacing_(1.0 / s.spacing) {
         const int v = n_ + 1;
-        device_ = rtcNewDevice(nullptr);
+        device_ = new_embree_device();
         if (!device_) throw std::runtime_error("Embree: cannot create a device");
         rtcSetDeviceErrorFunction(device_, embree_error, &error_);
         rtcSetDeviceMemoryMonitorFunction(device_, embree_memory, &bytes_);
