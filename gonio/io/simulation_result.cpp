@@ -122,7 +122,7 @@ void SimulationResult::put(size_t t, size_t p, const TraceResult& r,
         return cell_brdf(std::move(v), projected_solid_angle_, nc);
     };
     auto side = [&](SimulatedSide& s, const std::vector<double>& energy,
-                    const std::vector<double>& energy_stderr, const std::vector<double>& batches,
+                    const std::vector<double>& energy_stderr, bool lower,
                     const std::vector<double>& order_energy,
                     const std::vector<double>& order_energy_stderr,
                     const std::vector<double>& order_batches) {
@@ -134,9 +134,9 @@ void SimulationResult::put(size_t t, size_t p, const TraceResult& r,
         s.first.mean.put({t, p}, orders_of(dist, no, 0, 1));
         s.first.error.put({t, p}, orders_of(dist_err, no, 0, 1));
         s.higher.mean.put({t, p}, orders_of(dist, no, 1, no));
-        s.higher.error.put({t, p}, brdf_of(orders_stderr(batches, B, no, 1, no)));
+        s.higher.error.put({t, p}, brdf_of(r.sum_stderr(1, no, lower)));
         s.all.mean.put({t, p}, orders_of(dist, no, 0, no));
-        s.all.error.put({t, p}, brdf_of(orders_stderr(batches, B, no, 0, no)));
+        s.all.error.put({t, p}, brdf_of(r.sum_stderr(0, no, lower)));
         s.first_albedo.mean.put({t, p}, orders_of(order_energy, no, 0, 1));
         s.first_albedo.error.put({t, p}, orders_of(order_energy_stderr, no, 0, 1));
         if (no > 1) { // else no second order: zeros
@@ -148,11 +148,11 @@ void SimulationResult::put(size_t t, size_t p, const TraceResult& r,
         s.all_albedo.mean.put({t, p}, orders_of(order_energy, no, 0, no));
         s.all_albedo.error.put({t, p}, orders_stderr(order_batches, B, no, 0, no));
     };
-    side(reflected, r.energy, r.energy_stderr, r.energy_batches, r.ledger.reflected,
-         r.ledger_stderr.reflected, r.ledger_batches.reflected);
+    side(reflected, r.energy, r.energy_stderr, false, r.ledger.reflected, r.ledger_stderr.reflected,
+         r.ledger_batches.reflected);
     if (!transmitted.empty())
-        side(transmitted, r.transmitted, r.transmitted_stderr, r.transmitted_batches,
-             r.ledger.transmitted, r.ledger_stderr.transmitted, r.ledger_batches.transmitted);
+        side(transmitted, r.transmitted, r.transmitted_stderr, true, r.ledger.transmitted,
+             r.ledger_stderr.transmitted, r.ledger_batches.transmitted);
     absorbed.mean.put({t, p}, r.ledger.absorbed);
     absorbed.error.put({t, p}, r.ledger_stderr.absorbed);
     capped.mean.put({t, p}, r.ledger.capped);

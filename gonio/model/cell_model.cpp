@@ -30,8 +30,8 @@ ModelIncidence monte_carlo_incidence(const TraceResult& v) {
     m.l2_albedo = orders(v.ledger.reflected, 1, 2);
     m.l2plus_albedo = orders(v.ledger.reflected, 1, no);
     m.batches = B;
-    m.energy_batches = sum_orders(v.energy_batches, B, no, 0, no);
-    m.l1_energy_batches = sum_orders(v.energy_batches, B, no, 0, 1);
+    m.energy_batches = v.sum_batches(0, no);
+    m.l1_energy_batches = v.sum_batches(0, 1);
     m.albedo_stderr = batch_stderr(sum_orders(v.ledger_batches.reflected, B, no, 0, no), B);
     m.order_albedo = v.ledger.reflected;
     m.order_albedo_stderr = v.ledger_stderr.reflected;

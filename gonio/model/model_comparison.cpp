@@ -12,7 +12,7 @@ Comparison compare_model(const TraceResult& sim, ModelTarget target, const Model
     const int to = target == ModelTarget::l1 ? 1 : sim.orders;
     const size_t nc = size_t(sim.channels), cells = size_t(sim.cells), map = cells * nc;
     const int B = sim.batches, MB = model.batches;
-    const std::vector<double> s_batches = sum_orders(sim.energy_batches, B, sim.orders, from, to);
+    const std::vector<double>& s_batches = sim.sum_batches(from, to);
     const std::vector<double> s = batch_mean(s_batches, B), s_err = batch_stderr(s_batches, B);
     const std::vector<double> m_err =
         MB > 1 ? batch_stderr(model.energy_batches, MB) : std::vector<double>(map, 0.0);

@@ -2,8 +2,9 @@
 
 #include "core/check.h"
 #include "gonio/model/model_comparison.h"
-#include "gonio/run/surface_ensemble.h"
+#include "gonio/run/unit_completion.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace gonio {
@@ -63,25 +64,12 @@ void CaseAssembler::add(const UnitId& id, UnitResult&& u, const RunObserver& obs
     TraceResult all;
     std::vector<Comparison> comparisons;
     if (simulated_) {
-        SurfaceShares shares;
-        int surfaces = 1;
+        if (!u.completed) complete_unit(u, c_, *result_.sensor); // a merged batch shard's
+        all = std::move(u.members.at(0));
+        comparisons = std::move(u.comparisons);
         const bool ensemble = c_.surface.realisations > 1;
-        if (ensemble) { // the surfaces are the batches of the ensemble's trace
-            IncidenceEnsemble e;
-            for (TraceResult& m : u.members) e.add(std::move(m));
-            all = e.combined();
-            all.stop = u.stop, all.rounds = u.passes;
-            all.achieved_error = c_.trace.target.active() ? u.error : -1;
-            shares = e.shares(all, *result_.sensor);
-            surfaces = e.realisations();
-        } else {
-            all = std::move(u.members.at(0));
-        }
-        most_surfaces_ = std::max(most_surfaces_, surfaces);
-        for (size_t k = 0; k < u.models.size(); ++k)
-            comparisons.push_back(
-                compare_case_model(all, result_.models[k].compared_with, u.models[k]));
-        result_.simulation.put(t, p, all, comparisons, ensemble ? &shares : nullptr, surfaces);
+        most_surfaces_ = std::max(most_surfaces_, u.surfaces);
+        result_.simulation.put(t, p, all, comparisons, ensemble ? &u.shares : nullptr, u.surfaces);
     }
     added_at_[at] = true;
     ++added_;

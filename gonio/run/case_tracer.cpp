@@ -3,6 +3,7 @@
 #include "gonio/run/case_models.h"
 #include "gonio/run/ensemble_plan.h"
 #include "gonio/run/surface_ensemble.h"
+#include "gonio/run/unit_completion.h"
 #include "gonio/trace/gonioreflectometer.h"
 #include "gonio/trace/scene.h"
 #include "heightfield/measured/surface_character.h"
@@ -50,8 +51,9 @@ std::string incidence_label(const CaseConfig& c, const UnitId& id) {
 // One incidence of the case while it is being computed.
 struct Incidence {
     UnitId id;
-    std::vector<TraceResult> members; // one per surface traced so far
-    IncidenceEnsemble ensemble;       // the same, for the target's error (targets only)
+    std::vector<TraceResult> members; // the one surface's trace
+    IncidenceEnsemble ensemble;       // an ensemble's surfaces traced so far, reduced
+    int traced = 0;                   // surfaces traced so far
     int wanted = 1;                   // surfaces it is to have after this pass
     long long per_surface = 0;        // rays on each new surface
     int passes = 0;
@@ -101,7 +103,7 @@ class CaseTracer {
     void trace_surface(int r, int needed) {
         std::vector<Incidence*> work;
         for (Incidence& i : incidences_)
-            if (!i.done && r >= int(i.members.size()) && r < i.wanted) work.push_back(&i);
+            if (!i.done && r >= i.traced && r < i.wanted) work.push_back(&i);
         if (work.empty()) return;
         context_.check_stop();
         SurfaceOrigin origin;
@@ -134,7 +136,7 @@ class CaseTracer {
             trace_on(*scene, r, *i);
             if (first_ == 1) { // a single surface: the unit is complete
                 i->passes = 1;
-                finish(*i, i->members[0].stop);
+                finish(*i, i->members.at(0).stop);
             }
         }
     }
@@ -151,8 +153,11 @@ class CaseTracer {
         // (Its time, and its models', are the unit's own: the assembly adds them to the phases.)
         TraceResult trace =
             trace_incidence(scene, parts_, sensor_, incidence_direction(c_, i.id), ts);
-        if (first_ > 1 && c_.trace.target.active()) i.ensemble.add(trace);
-        i.members.push_back(std::move(trace));
+        ++i.traced;
+        if (first_ > 1)
+            i.ensemble.add(std::move(trace)); // its batches reduced, then dropped
+        else
+            i.members.push_back(std::move(trace));
     }
 
     // After every surface of a pass: each ensemble's target decides whether it is complete.
@@ -181,16 +186,26 @@ class CaseTracer {
         }
     }
 
-    // The unit is complete: its models, then on to the sink.
+    // The unit is complete: its models, its comparisons with them (a batch shard's wait for
+    // gonio merge), then on to the sink.
     void finish(Incidence& i, StopReason stop) {
         i.done = true;
         UnitResult u;
-        u.members = std::move(i.members);
         u.stop = stop, u.passes = i.passes, u.error = i.error;
         u.surface = surface_text_;
         if (models_)
             u.models = models_->evaluate(incidence_direction(c_, i.id), sensor_, work_.seed,
-                                         incidence_stream(i.id), int(u.members.size()));
+                                         incidence_stream(i.id), i.traced);
+        {
+            ScopedPhase t(phases_, Phase::compare);
+            if (first_ > 1)
+                complete_unit(u, i.ensemble.combined(), &i.ensemble, c_, sensor_);
+            else if (c_.trace.batch_shard_count > 1)
+                u.members = std::move(i.members);
+            else
+                complete_unit(u, std::move(i.members.at(0)), nullptr, c_, sensor_);
+        }
+        i.members.clear();
         i.ensemble = IncidenceEnsemble{};
         if (context_.observer.unit_done) context_.observer.unit_done(i.id);
         sink_(i.id, std::move(u));

@@ -106,7 +106,10 @@ RunResult merge_parts(const std::vector<std::string>& parts, const RunOptions& o
     }
     if (!batches.empty()) {
         NumberedUnit u = batches.combined();
-        check_unit(u, result->config, batches.first_part());
+        check_unit(u, result->config, batches.first_part(), true); // (completed when added)
+        if (u.result.models.size() != result->config.cases[u.id.case_index].model.models.size())
+            throw std::runtime_error(batches.first_part() +
+                                     ": the first batch shard's unit lacks its models");
         owner.emplace(u.number, "the batch shards");
         assembly->add(u.id, std::move(u.result));
     }

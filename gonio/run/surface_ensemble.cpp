@@ -2,6 +2,7 @@
 
 #include "core/batch_means.h"
 #include "core/check.h"
+#include "gonio/trace/batch_reducer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,12 +38,13 @@ void IncidenceEnsemble::add(TraceResult t) {
     s.variance.l1_albedo = ray_variance(t.ledger_batches.reflected, B, no, 0, 1);
     s.variance.l2plus_albedo = ray_variance(t.ledger_batches.reflected, B, no, 1, no);
     s.variance.linf_albedo = ray_variance(t.ledger_batches.reflected, B, no, 0, no);
-    s.variance.l1_cells = ray_variance(t.energy_batches, B, no, 0, 1);
-    s.variance.linf_cells = ray_variance(t.energy_batches, B, no, 0, no);
-    // Freed, not just cleared: an ensemble keeps hundreds of these (B times their means each).
+    s.variance.l1_cells = squared(batch_stderr(t.sum_batches(0, 1), B));
+    s.variance.linf_cells = squared(batch_stderr(t.sum_batches(0, no), B));
+    // Freed, not just cleared: an ensemble keeps hundreds of these.
     for (auto v :
          {&t.energy_batches, &t.transmitted_batches, &t.energy_stderr, &t.transmitted_stderr})
         std::vector<double>().swap(*v);
+    t.energy_sums = OrderSums{}, t.transmitted_sums = OrderSums{};
     t.ledger_batches = EnergyLedger{};
     t.ledger_stderr = EnergyLedger{};
     s.mean = std::move(t);
@@ -77,13 +79,19 @@ TraceResult IncidenceEnsemble::combined() const {
         field_mean(c) = batch_mean(batches, R);
         field_err(c) = batch_stderr(batches, R);
     };
-    fill(
-        [](auto& r) -> auto& { return r.energy; }, [](auto& r) -> auto& { return r.energy_stderr; },
-        [](auto& r) -> auto& { return r.energy_batches; });
-    fill(
-        [](auto& r) -> auto& { return r.transmitted; },
-        [](auto& r) -> auto& { return r.transmitted_stderr; },
-        [](auto& r) -> auto& { return r.transmitted_batches; });
+    // The maps: the surfaces' means reduced as batches are (their order sums kept).
+    auto maps = [&](std::vector<double> TraceResult::*mean, std::vector<double> TraceResult::*err,
+                    OrderSums TraceResult::*sums) {
+        if ((first.*mean).empty()) return;
+        std::vector<double> batches;
+        batches.reserve(size_t(R) * (first.*mean).size());
+        for (const Surface& s : surfaces_)
+            batches.insert(batches.end(), (s.mean.*mean).begin(), (s.mean.*mean).end());
+        reduce_batches(batches, R, c.orders, c.*mean, c.*err, c.*sums);
+    };
+    maps(&TraceResult::energy, &TraceResult::energy_stderr, &TraceResult::energy_sums);
+    maps(&TraceResult::transmitted, &TraceResult::transmitted_stderr,
+         &TraceResult::transmitted_sums);
     for (auto entry :
          {&EnergyLedger::reflected, &EnergyLedger::transmitted, &EnergyLedger::absorbed,
           &EnergyLedger::capped, &EnergyLedger::lost, &EnergyLedger::unaccounted})
@@ -114,7 +122,7 @@ SurfaceShares IncidenceEnsemble::shares(const TraceResult& c, const BeckersSenso
     };
     // Per channel, the median share over the cells at least a tenth of the brightest.
     auto cell_shares = [&](int to, std::vector<double> RayVariance::*field) {
-        const std::vector<double> total = ray_variance(c.energy_batches, R, no, 0, to);
+        const std::vector<double> total = squared(batch_stderr(c.sum_batches(0, to), R));
         const std::vector<double> mean = sum_orders(c.energy, 1, no, 0, to);
         const std::vector<double> rays = ray_part(field);
         std::vector<double> out(nc);

@@ -81,6 +81,12 @@ struct Reader {
         std::memcpy(&v, in.data() + at, sizeof(T));
         at += sizeof(T);
     }
+    void get(bool& v) { // a byte that is 0 or 1: any other is a corrupt record, not a bool
+        std::uint8_t b = 0;
+        get(b);
+        if (b > 1) throw std::runtime_error("a unit message with a corrupt flag");
+        v = b == 1;
+    }
     void get(std::string& s) {
         std::uint64_t n = 0;
         get(n);
@@ -107,6 +113,9 @@ void trace_fields(IO& io, T& t) {
     io(t.orders), io(t.cells), io(t.channels), io(t.rays), io(t.segments), io(t.energy);
     io(t.transmitted), io(t.seconds), io(t.batches), io(t.energy_stderr), io(t.transmitted_stderr);
     io(t.energy_batches), io(t.transmitted_batches), io(t.stop), io(t.rounds), io(t.achieved_error);
+    for (auto* sums :
+         {&t.energy_sums, &t.transmitted_sums, &t.sums_stderr, &t.transmitted_sums_stderr})
+        io(sums->l1), io(sums->l2plus), io(sums->linf);
     ledger_fields(io, t.ledger);
     ledger_fields(io, t.ledger_stderr);
     ledger_fields(io, t.ledger_batches);
@@ -118,9 +127,15 @@ void model_fields(IO& io, M& m) {
     io(m.l1_energy_batches), io(m.order_albedo), io(m.order_albedo_stderr);
     io(m.order_transmittance), io(m.order_transmittance_stderr);
 }
+template <class IO, class C>
+void comparison_fields(IO& io, C& c) {
+    io(c.model_albedo), io(c.relative_difference), io(c.relative_difference_stderr), io(c.sigmas);
+    io(c.distance), io(c.distance_stderr), io(c.ratio), io(c.ratio_stderr);
+}
 // The fewest bytes one trace and one model's record take (their counts and sizes alone), so that
 // a corrupt count is refused before anything is allocated for it.
-constexpr std::uint64_t kMinTraceBytes = 29 * 8, kMinModelBytes = 12 * 8;
+constexpr std::uint64_t kMinTraceBytes = 41 * 8, kMinModelBytes = 12 * 8,
+                        kMinComparisonBytes = 9 * 8;
 template <class IO, class U, class Count>
 void unit_fields(IO& io, U& u, Count& count) {
     count(u.members, kMinTraceBytes);
@@ -128,6 +143,15 @@ void unit_fields(IO& io, U& u, Count& count) {
     io(u.stop), io(u.passes), io(u.error), io(u.surface);
     count(u.models, kMinModelBytes);
     for (auto& m : u.models) model_fields(io, m);
+    io(u.completed), io(u.surfaces);
+    io(u.shares.l1_albedo), io(u.shares.l2plus_albedo), io(u.shares.linf_albedo);
+    io(u.shares.l1_cells), io(u.shares.linf_cells);
+    count(u.comparisons, kMinComparisonBytes);
+    for (auto& c : u.comparisons) {
+        comparison_fields(io, c);
+        count(c.l2plus, kMinComparisonBytes);
+        for (auto& l : c.l2plus) comparison_fields(io, l);
+    }
 }
 } // namespace
 

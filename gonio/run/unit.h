@@ -7,6 +7,7 @@
 // executor assembles the result from units by one code path (case_assembler.h).
 #include "gonio/config/config.h"
 #include "gonio/model/cell_model.h"
+#include "gonio/model/model_comparison.h"
 #include "gonio/trace/trace_result.h"
 
 #include <cstdint>
@@ -44,6 +45,13 @@ struct UnitResult {
     // Every model of the case at this incidence, in the case's order (empty in the batch shards
     // of a single-incidence job but the first: one is enough).
     std::vector<ModelIncidence> models;
+    // Completed where it was computed (unit_completion.h; every unit but a batch shard's):
+    // members then holds one trace, the ensemble's or the surface's, with its order sums reduced
+    // to their errors, and the comparisons with the models and the surfaces' shares are made.
+    bool completed = false;
+    int surfaces = 1;
+    SurfaceShares shares;                // ensembles
+    std::vector<Comparison> comparisons; // per model, in the case's order
 };
 
 // A unit with its number and place, as part files, checkpoints and MPI messages carry it.

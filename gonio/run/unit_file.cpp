@@ -11,7 +11,7 @@ namespace gonio {
 
 namespace {
 // 3: every unit record checksummed (HDF5's Fletcher-32 filter, checked on every read).
-constexpr const char* kFormat = "gonio-units 4";
+constexpr const char* kFormat = "gonio-units 5";
 
 void write_int(hid_t o, const char* name, long long v) {
     h5::write_int_attribute(o, name, v);
@@ -240,10 +240,24 @@ std::string trace_problem(const TraceResult& t, const CaseConfig& c) {
     const size_t B = size_t(t.batches);
     const bool transmits = c.material.transmits;
     auto fits = [](const std::vector<double>& v, size_t n) { return v.size() == n; };
+    // Per-order batches travel only with a batch shard's units.
+    const bool per_order = !t.energy_batches.empty();
     bool ok = fits(t.energy, map) && fits(t.energy_stderr, map) &&
-              fits(t.energy_batches, B * map) && fits(t.transmitted, transmits ? map : 0) &&
+              fits(t.energy_batches, per_order ? B * map : 0) &&
+              fits(t.transmitted, transmits ? map : 0) &&
               fits(t.transmitted_stderr, transmits ? map : 0) &&
-              fits(t.transmitted_batches, transmits ? B * map : 0);
+              fits(t.transmitted_batches, per_order && transmits ? B * map : 0);
+    // The order sums per batch, or (a completed unit's) their errors alone.
+    const bool sums = !t.energy_sums.empty();
+    for (const OrderSums* s :
+         {&t.energy_sums, &t.transmitted_sums, &t.sums_stderr, &t.transmitted_sums_stderr}) {
+        const bool lower = s == &t.transmitted_sums || s == &t.transmitted_sums_stderr;
+        const bool batches = s == &t.energy_sums || s == &t.transmitted_sums;
+        const size_t n = (lower && !transmits) || batches != sums ? 0
+                         : batches                                ? B * cells * nc
+                                                                  : cells * nc;
+        ok = ok && fits(s->l1, n) && fits(s->l2plus, n) && fits(s->linf, n);
+    }
     for (const EnergyLedger* l : {&t.ledger, &t.ledger_stderr, &t.ledger_batches}) {
         const size_t b = l == &t.ledger_batches ? B : 1;
         ok = ok && fits(l->reflected, b * orders * nc) &&
@@ -274,11 +288,44 @@ std::string model_problem(const ModelIncidence& m, size_t cells, size_t nc) {
 }
 
 // What is wrong with a unit of case c, or "".
+// What is wrong with a comparison's arrays, or "".
+std::string comparison_problem(const Comparison& x, size_t cells, size_t nc, bool l2plus_allowed) {
+    bool ok = true;
+    for (const std::vector<double>* v :
+         {&x.model_albedo, &x.relative_difference, &x.relative_difference_stderr, &x.sigmas,
+          &x.distance, &x.distance_stderr})
+        ok = ok && v->size() == nc;
+    ok = ok && x.ratio.size() == cells * nc && x.ratio_stderr.size() == cells * nc;
+    ok = ok && (x.l2plus.empty() || (l2plus_allowed && x.l2plus.size() == 1));
+    if (ok && !x.l2plus.empty()) return comparison_problem(x.l2plus[0], cells, nc, false);
+    return ok ? "" : "a comparison whose arrays do not fit the case";
+}
+
 std::string unit_problem(const UnitResult& u, const CaseConfig& c, bool batch_shard) {
-    const size_t surfaces = u.members.size();
-    if (c.surface.realisations == 1 ? surfaces != 1 : surfaces < 2)
+    const size_t surfaces = u.members.size(), cells = size_t(c.sensor_cells),
+                 nc = size_t(c.channels());
+    if (u.completed ? surfaces != 1 : (c.surface.realisations == 1 ? surfaces != 1 : surfaces < 2))
         return std::to_string(surfaces) + " traces for " + std::to_string(c.surface.realisations) +
                " surface(s)";
+    if (u.completed != !batch_shard) return "a unit completed where it should not be, or not";
+    if (u.surfaces < 1 || (c.surface.realisations == 1 && u.surfaces != 1))
+        return "a unit of " + std::to_string(u.surfaces) + " surfaces";
+    if (u.completed) {
+        if (u.comparisons.size() != u.models.size())
+            return std::to_string(u.comparisons.size()) + " comparisons for " +
+                   std::to_string(u.models.size()) + " models";
+        for (const Comparison& x : u.comparisons)
+            if (const std::string why = comparison_problem(x, cells, nc, true); !why.empty())
+                return why;
+        const SurfaceShares& sh = u.shares;
+        const size_t n = c.surface.realisations > 1 ? nc : 0;
+        for (const std::vector<double>* v :
+             {&sh.l1_albedo, &sh.l2plus_albedo, &sh.linf_albedo, &sh.l1_cells, &sh.linf_cells})
+            if (v->size() != n) return "a unit whose surface shares do not fit the case";
+        if (!u.members[0].energy_batches.empty()) return "a completed unit with its batches";
+    } else if (!u.comparisons.empty()) {
+        return "comparisons in a unit still to be completed";
+    }
     if (size_t(u.stop) >= enum_count<StopReason>()) return "an unknown stop reason";
     for (const TraceResult& t : u.members)
         if (const std::string why = trace_problem(t, c); !why.empty()) return why;

@@ -1,7 +1,7 @@
 #pragma once
 // A file of finished work units: a shard's part (`gonio run --shard i/N`, put together by
 // `gonio merge`) or a running job's checkpoint (`gonio run --resume`). HDF5, format
-// "gonio-units 4": the run's identity in root attributes (gonio version and git hash, seed,
+// "gonio-units 5": the run's identity in root attributes (gonio version and git hash, seed,
 // effective config, shard), one opaque dataset per unit holding its result exactly (unit.h:
 // traces and models), with its number, case and incidence as attributes.
 #include "gonio/config/config.h"

@@ -66,7 +66,7 @@ double relative_error_of(const TraceResult& r, const AccuracyTarget& t,
     const bool albedo = t.quantity != Q::l1_cells && t.quantity != Q::linf_cells;
     // Per batch, the quantity's albedos [channel] or cell energies [cell][channel].
     const std::vector<double> x =
-        sum_orders(albedo ? r.ledger_batches.reflected : r.energy_batches, B, no, from, to);
+        albedo ? sum_orders(r.ledger_batches.reflected, B, no, from, to) : r.sum_batches(from, to);
     const std::vector<double> mean = batch_mean(x, B), err = batch_stderr(x, B);
     auto relative = [&](size_t i) { return mean[i] != 0 ? err[i] / std::abs(mean[i]) : 0.0; };
     double worst = 0;

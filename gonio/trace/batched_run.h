@@ -30,6 +30,11 @@ TraceResult run_batched(const TraceSettings& st, long long per_batch, BatchTally
     const int shards = std::max(1, st.batch_shard_count), shard = st.batch_shard_index;
     const long long max_rounds =
         target.active() ? std::max(1LL, target.max_rays / std::max(1LL, round_rays)) : 1;
+    // Without a target every batch is complete when its last block merges (blocks run batch
+    // after batch): the tally keeps the open batch alone. A batch shard hands its batches on.
+    tally.keep(shards > 1        ? BatchKeeping::hand_on
+               : target.active() ? BatchKeeping::memory
+                                 : BatchKeeping::stream);
     long long done = 0, next = 1;
     for (;;) {
         const long long first_block = done * round_blocks;

@@ -11,6 +11,8 @@ namespace gonio {
 
 inline constexpr const char* kEmbreeDeviceConfig = "max_isa=avx2";
 
-inline RTCDevice new_embree_device() { return rtcNewDevice(kEmbreeDeviceConfig); }
+inline RTCDevice new_embree_device() {
+    return rtcNewDevice(kEmbreeDeviceConfig);
+}
 
 } // namespace gonio

@@ -134,6 +134,10 @@ TraceResult concatenate_channels(const std::vector<TraceResult>& r) {
                      &TraceResult::transmitted_stderr, &TraceResult::energy_batches,
                      &TraceResult::transmitted_batches})
         res.*map = concat([map](const TraceResult& p) -> const auto& { return p.*map; });
+    for (auto side : {&TraceResult::energy_sums, &TraceResult::transmitted_sums})
+        for (auto sum : {&OrderSums::l1, &OrderSums::l2plus, &OrderSums::linf})
+            (res.*side).*sum = concat(
+                [ side, sum ](const TraceResult& p) -> const auto& { return (p.*side).*sum; });
     for (auto ledger :
          {&TraceResult::ledger, &TraceResult::ledger_stderr, &TraceResult::ledger_batches})
         for (auto entry :

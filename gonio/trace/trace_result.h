@@ -31,6 +31,15 @@ struct EnergyLedger {
     std::vector<double> unaccounted;
 };
 
+// Per batch, the bounce orders summed as the errors of every derived quantity need them (the
+// multiple- and all-order maps of the result file, the models' comparisons, the accuracy target,
+// an ensemble's ray variance): [batch][cell][channel], each summed from 0 in order as
+// sum_orders (core/batch_means.h) does. Three maps a batch whatever the orders kept.
+struct OrderSums {
+    std::vector<double> l1, l2plus, linf;
+    bool empty() const { return l1.empty(); }
+};
+
 struct TraceResult {
     int orders = 0; // K + 1 (the last is the overflow order)
     int cells = 0, channels = 0;
@@ -47,9 +56,24 @@ struct TraceResult {
     int batches = 0;
     std::vector<double> energy_stderr, transmitted_stderr;
     EnergyLedger ledger_stderr;
-    // The batches' own estimates: [batch][...] of each array above.
-    std::vector<double> energy_batches, transmitted_batches;
+    // The batches' order sums, and their ledgers ([batch][order][channel]: small).
+    OrderSums energy_sums, transmitted_sums;
     EnergyLedger ledger_batches;
+    // The batches' own estimates per order, [batch][order][cell][channel]: kept only by a batch
+    // shard (combine_batch_shards needs them); every other trace reduces each batch as it closes.
+    std::vector<double> energy_batches, transmitted_batches;
+
+    // The standard errors of the order sums, [cell][channel]: what a unit keeps of them once its
+    // comparisons are made (drop_order_sums).
+    OrderSums sums_stderr, transmitted_sums_stderr;
+
+    // The batch sums of orders from..to-1 of the upper (or lower) sensor: L1 (0, 1), L2+ (1,
+    // orders) or every order (0, orders).
+    const std::vector<double>& sum_batches(int from, int to, bool lower = false) const;
+    // Their standard error, from the batches or, once dropped, as kept.
+    std::vector<double> sum_stderr(int from, int to, bool lower = false) const;
+    // Keeps the order sums' errors and frees the sums (B maps each).
+    void drop_order_sums();
 
     StopReason stop = StopReason::rays; // how the run ended
     long long rounds = 1;               // passes over every batch
