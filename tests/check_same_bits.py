@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """The same config and seed give the same bits whatever the layout: one process with 1 or 2
-threads, three shards put together by `gonio merge`, `mpirun -np 2`, and a run stopped by SIGINT
-and resumed; and `gonio model` gives the models of `gonio run` bit for bit.
+threads, three shards put together by `gonio merge`, `mpirun -np 2`, a run stopped by SIGINT
+and resumed, and one killed by SIGKILL and resumed; and `gonio model` gives the models of `gonio run` bit for bit.
 
 The case is the quickstart's gold one (anisotropic Beckmann, three wavelengths), whose Model L1
 reaches the underflow range in its far cells: there the floating-point mode decides the bits
 (flush-to-zero in threads that had run Embree, not elsewhere), and before every thread was put in
 one mode (core/float_mode.h) the merged, MPI and model-only files differed from the one-process
-file in those cells (~1e-305, measured on `configs/quickstart.toml`).
+file in those cells (~1e-305, measured on `configs/quickstart.toml`). A 16-wavelength ensemble
+takes every path of the reduced units (streamed batches, surfaces combined where traced).
 
 Usage: check_same_bits.py GONIO_BINARY
 Every numeric dataset but the timings (*_seconds) must be equal bit for bit.
@@ -47,7 +48,15 @@ name = "gold_ensemble"
 ndf = {{ type = "ggx", alpha = 0.3 }}
 material = {{ type = "conductor", ior = "Au" }}
 surface = {{ realisations = 2 }}
+[[case]]
+name = "gold_spectral_ensemble"
+ndf = {{ type = "beckmann", alpha = 0.5 }}
+material = {{ type = "conductor", ior = "Au" }}
+spectrum = {{ wavelengths = [400, 420, 440, 460, 480, 500, 520, 540, 560, 580, 600, 620, 640, 660, 680, 700] }}
+surface = {{ realisations = 2 }}
+trace = {{ rays = {spectral_rays} }}
 """
+UNITS = 24  # 3 cases x 4 theta_i x 2 phi_i
 MPIRUN = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-x", "ASAN_OPTIONS=detect_leaks=0"]
 
 
@@ -63,7 +72,7 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         path = lambda name: os.path.join(tmp, name)
         with open(path("c.toml"), "w") as f:
-            f.write(CONFIG.format(rays=16384))
+            f.write(CONFIG.format(rays=16384, spectral_rays=16384))
         base = [gonio, "run", "c.toml", "-q", "--overwrite", "--cache-dir", "cache"]
         run(base + ["-o", "ref.h5", "--threads", "1"], tmp)
         with h5py.File(path("ref.h5")) as f:
@@ -85,7 +94,7 @@ def main():
 
         # Stopped by SIGINT after a few incidences, then resumed.
         with open(path("slow.toml"), "w") as f:
-            f.write(CONFIG.format(rays=2 ** 20))
+            f.write(CONFIG.format(rays=2 ** 20, spectral_rays=2 ** 16))
         slow = [gonio, "run", "slow.toml", "-q", "--cache-dir", "cache"]
         run(slow + ["-o", "whole.h5"], tmp)
         p = subprocess.Popen(slow + ["-o", "cut.h5"], cwd=tmp, stderr=subprocess.PIPE, text=True)
@@ -97,9 +106,21 @@ def main():
         assert p.returncode == 130, (p.returncode, err)
         with h5py.File(path("cut.h5.checkpoint"), "r") as f:
             finished = sum(k.startswith("unit_") for k in f)
-        assert 0 < finished < 16, finished
+        assert 0 < finished < UNITS, finished
         run(slow + ["-o", "cut.h5", "--resume"], tmp)
-        same(path("whole.h5"), path("cut.h5"), f"stopped after {finished} of 16 units, resumed")
+        same(path("whole.h5"), path("cut.h5"), f"stopped after {finished} of {UNITS} units, resumed")
+
+        # Killed (kill -9: no handler runs, a record may be half written), then resumed.
+        p = subprocess.Popen(slow + ["-o", "killed.h5"], cwd=tmp, stderr=subprocess.PIPE,
+                             text=True)
+        while not os.path.exists(path("killed.h5.checkpoint")) and p.poll() is None:
+            time.sleep(0.05)
+        time.sleep(3.0)
+        p.kill()
+        p.communicate(timeout=300)
+        assert p.returncode == -signal.SIGKILL, p.returncode
+        run(slow + ["-o", "killed.h5", "--resume"], tmp)
+        same(path("whole.h5"), path("killed.h5"), "killed by SIGKILL, resumed")
     print("same bits: ok")
 
 

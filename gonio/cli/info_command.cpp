@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -45,7 +46,8 @@ void print_json(const ResultSummary& s) {
         out[k] = attribute(s.attributes, k);
     out["seed"] = s.seed;
     json how = json::object(); // how it ran: processes, threads, shard, merged parts
-    for (const char* k : {"mpi_ranks", "threads_per_rank", "shard", "merged_parts"})
+    for (const char* k : {"mpi_ranks", "threads_per_rank", "shard", "merged_parts",
+                          "memory_estimate_bytes", "memory_peak_bytes"})
         if (s.attributes.count(k)) how[k] = attribute(s.attributes, k);
     if (!how.empty()) out["execution"] = how;
     if (!s.timings.empty()) out["timings"] = timings_json(s.timings);
@@ -104,6 +106,10 @@ void print_text(const ResultSummary& s) {
             s.attributes.count("merged_parts")
                 ? (", merged from " + attribute(s.attributes, "merged_parts") + " parts").c_str()
                 : "");
+    if (s.attributes.count("memory_peak_bytes"))
+        std::printf("  memory %.0f MB at its peak (estimated %.0f MB before the run)\n",
+                    std::atof(attribute(s.attributes, "memory_peak_bytes").c_str()) / 1e6,
+                    std::atof(attribute(s.attributes, "memory_estimate_bytes").c_str()) / 1e6);
     auto print_timings = [](const char* indent,
                             const std::vector<std::pair<std::string, double>>& timings) {
         if (timings.empty()) return;

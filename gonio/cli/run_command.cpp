@@ -8,6 +8,7 @@
 #include "gonio/cli/run_table.h"
 #include "gonio/cli/stop_signal.h"
 #include "gonio/io/result_writer.h"
+#include "gonio/run/memory_estimate.h"
 #include "gonio/run/mpi_job.h"
 #include "gonio/run/run.h"
 
@@ -34,6 +35,11 @@ int run_here(const Config& cfg, RunOptions o, const RunArgs& a, const std::strin
                                       "continue it or --overwrite to start again");
     refuse_existing(output, a.common.overwrite);
     ResultWriter writer(output, true); // an unwritable output fails here, before any work
+    if (!a.common.quiet) {
+        const MemoryEstimate m = estimate_memory(cfg, true);
+        std::printf("memory: about %.0f MB at the peak (most of it %s)\n", m.bytes / 1e6,
+                    m.largest.c_str());
+    }
     RunTable table(UnitLayout(cfg).total(), a.common.quiet, checkpoint);
     o.observer = table.observer();
     RunResult result;

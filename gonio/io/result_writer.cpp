@@ -72,6 +72,11 @@ void ResultWriter::write_execution(int ranks, int threads, int merged_parts) {
         h5::write_string_attribute(file_, "merged_parts", std::to_string(merged_parts));
 }
 
+void ResultWriter::write_memory(double estimate, double peak) {
+    h5::write_string_attribute(file_, "memory_estimate_bytes", std::to_string((long long)estimate));
+    h5::write_string_attribute(file_, "memory_peak_bytes", std::to_string((long long)peak));
+}
+
 // A case's group with its dimension scales, one per axis, and the names of the coordinate
 // variables along cell and channel; put() writes a named array against them.
 struct ResultWriter::CaseGroup {

@@ -37,6 +37,8 @@ class ResultWriter {
     // How the run was executed (root string attributes mpi_ranks, threads_per_rank and, for a
     // merge, merged_parts): provenance, not data.
     void write_execution(int ranks, int threads_per_rank, int merged_parts = 0);
+    // The memory estimated before the run and this process's peak, in bytes.
+    void write_memory(double estimate_bytes, double peak_bytes);
     void write_model_case(const CaseConfig& c, const BeckersSensor& sensor,
                           const std::string& ndf_description,
                           const std::vector<ModelResult>& models);

@@ -24,21 +24,12 @@ double fresnel_dielectric(double cos_i, double eta) {
 }
 
 double fresnel_conductor(double cos_i, std::complex<double> eta) {
-    // Real arithmetic (Born & Wolf, Principles of Optics, section 14.2: the complex refraction
-    // angle written as n^2 - sin^2 = (a + i b)^2): the reflectance of the s and p amplitudes of a
-    // complex cos_t, without complex division (a library call each, several times slower).
+    // Real arithmetic: the reflectance of the s and p amplitudes of a complex cos_t, without
+    // complex division (a library call each, several times slower).
     const double c = std::clamp(cos_i, 0.0, 1.0);
     if (c == 0.0) return 1.0; // grazing: every conductor reflects all
-    const double n = eta.real(), k = eta.imag(), s2 = 1.0 - c * c;
-    const double u = n * n - k * k - s2, root = std::sqrt(u * u + 4.0 * n * n * k * k);
-    const double a2 = std::max(0.0, 0.5 * (root + u)), b2 = std::max(0.0, 0.5 * (root - u)),
-                 a = std::sqrt(a2);
-    const double ab = a2 + b2; // |n^2 - sin^2|
-    const double rs = (ab - 2.0 * a * c + c * c) / (ab + 2.0 * a * c + c * c);
-    // Rp / Rs with sin(theta) tan(theta) = s2 / c, times c^2 above and below: finite at grazing.
-    const double rp =
-        rs * (ab * c * c - 2.0 * a * s2 * c + s2 * s2) / (ab * c * c + 2.0 * a * s2 * c + s2 * s2);
-    return std::min(1.0, 0.5 * (rs + rp));
+    const double n = eta.real(), k = eta.imag();
+    return fresnel_conductor(c, 1.0 - c * c, n * n - k * k, 4.0 * n * n * k * k);
 }
 
 double fresnel_schlick(double cos_i, double f0) {

@@ -37,6 +37,7 @@ class FresnelTerm {
     int channels_ = 1;
     std::vector<double> real_;
     std::vector<std::complex<double>> complex_;
+    std::vector<double> conductor_u0_, conductor_w_; // n^2 - k^2 and 4 n^2 k^2 per channel
 };
 
 } // namespace gonio

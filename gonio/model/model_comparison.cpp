@@ -54,15 +54,15 @@ Comparison compare_model(const TraceResult& sim, ModelTarget target, const Model
         c.sigmas[k] = e > 0 ? (a_s - a_m) / e : 0.0;
         c.distance[k] = distance(s, m, k);
         // Jackknife over the simulation's batches, then over the model's: independent, so the
-        // variances add.
+        // variances add. (Channel k's cells alone: the distance reads no other.)
         std::vector<double> without(map);
         const double j_s = jackknife_stderr(B, [&](int b) {
-            for (size_t i = 0; i < map; ++i)
+            for (size_t i = k; i < map; i += nc)
                 without[i] = mean_without(s[i], s_batches[b * map + i], B);
             return distance(without, m, k);
         });
         const double j_m = jackknife_stderr(MB, [&](int b) {
-            for (size_t i = 0; i < map; ++i)
+            for (size_t i = k; i < map; i += nc)
                 without[i] = mean_without(m[i], model.energy_batches[b * map + i], MB);
             return distance(s, without, k);
         });

@@ -1,5 +1,6 @@
 #include "gonio/run/case_assembler.h"
 
+#include "core/buffer_pool.h"
 #include "core/check.h"
 #include "gonio/model/model_comparison.h"
 #include "gonio/run/unit_completion.h"
@@ -70,6 +71,9 @@ void CaseAssembler::add(const UnitId& id, UnitResult&& u, const RunObserver& obs
         const bool ensemble = c_.surface.realisations > 1;
         most_surfaces_ = std::max(most_surfaces_, u.surfaces);
         result_.simulation.put(t, p, all, comparisons, ensemble ? &u.shares : nullptr, u.surfaces);
+        for (auto map : {&TraceResult::energy, &TraceResult::energy_stderr,
+                         &TraceResult::transmitted, &TraceResult::transmitted_stderr})
+            give_back(std::move(all.*map)); // copied into the result: for the next trace
     }
     added_at_[at] = true;
     ++added_;

@@ -1,9 +1,9 @@
 #pragma once
 // A case's result put together from its work units, whatever computed them and in whatever order
 // they arrive: the one code path by which every executor (a process alone, with its checkpoint,
-// MPI's rank 0, gonio merge) assembles results. Each unit is folded in as it comes (its
-// comparisons with the models computed, its batches then freed), so a case never holds more than
-// its finished arrays and the unit at hand.
+// MPI's rank 0, gonio merge) assembles results. Each unit is folded in as it comes (completed
+// where it was traced, unit_completion.h; a batch shard's merged units completed here), so a case
+// never holds more than its finished arrays and the unit at hand.
 #include "gonio/config/config.h"
 #include "gonio/io/model_result.h"
 #include "gonio/io/simulation_result.h"

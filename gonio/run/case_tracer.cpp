@@ -1,5 +1,6 @@
 #include "gonio/run/case_tracer.h"
 
+#include "core/buffer_pool.h"
 #include "gonio/run/case_models.h"
 #include "gonio/run/ensemble_plan.h"
 #include "gonio/run/surface_ensemble.h"
@@ -82,6 +83,7 @@ class CaseTracer {
             for (int r = 0; r < needed; ++r) trace_surface(r, needed);
             end_pass();
         }
+        release_buffers(); // the next case's tallies have other sizes
     }
 
   private:
@@ -196,19 +198,21 @@ class CaseTracer {
         if (models_)
             u.models = models_->evaluate(incidence_direction(c_, i.id), sensor_, work_.seed,
                                          incidence_stream(i.id), i.traced);
-        {
-            ScopedPhase t(phases_, Phase::compare);
-            if (first_ > 1)
-                complete_unit(u, i.ensemble.combined(), &i.ensemble, c_, sensor_);
-            else if (c_.trace.batch_shard_count > 1)
-                u.members = std::move(i.members);
-            else
-                complete_unit(u, std::move(i.members.at(0)), nullptr, c_, sensor_);
-        }
+        // The completion's time joins the compare phase after the sink, so that the phases
+        // stay in the order they logically run (trace, models, compare).
+        const auto completing = Clock::now();
+        if (first_ > 1)
+            complete_unit(u, i.ensemble.combined(), &i.ensemble, c_, sensor_);
+        else if (c_.trace.batch_shard_count > 1)
+            u.members = std::move(i.members);
+        else
+            complete_unit(u, std::move(i.members.at(0)), nullptr, c_, sensor_);
+        const double completion = std::chrono::duration<double>(Clock::now() - completing).count();
         i.members.clear();
         i.ensemble = IncidenceEnsemble{};
         if (context_.observer.unit_done) context_.observer.unit_done(i.id);
         sink_(i.id, std::move(u));
+        phases_.add(Phase::compare, completion);
     }
 
     const CaseWork& work_;

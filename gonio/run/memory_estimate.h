@@ -1,9 +1,10 @@
 #pragma once
-// What a run will need in memory, estimated from its config before any work: each case's
-// surface (generation's work arrays, or the traced scene), the traces held until their units
-// are complete (every batch's histograms, orders x cells x channels x batches doubles; an
-// ensemble keeps every surface's until its last pass), and the results every case keeps until
-// the file is written. Refused with the figures when it exceeds the memory the machine has
+// What a run will need in memory, estimated from its config before any work: the process
+// itself, each case's surface (generation's work arrays, or the traced scene), a trace in flight
+// (its open batch and reductions, three order sums per batch; every batch with an accuracy
+// target), a unit's completion and records on their way to the checkpoint, an ensemble's
+// surface means until its last pass, and the results every case keeps until the file is
+// written. Printed before a run; the result file keeps it beside the peak. Refused with the figures when it exceeds the memory the machine has
 // available, instead of failing with an allocation error after minutes of work.
 #include "gonio/config/config.h"
 
@@ -17,6 +18,9 @@ struct MemoryEstimate {
 };
 
 MemoryEstimate estimate_memory(const Config& cfg, bool simulated);
+
+// This process's peak resident memory so far (getrusage), in bytes.
+double peak_memory_bytes();
 
 // The memory the machine has available now (MemAvailable), or 0 when it cannot tell.
 double available_memory_bytes();

@@ -1,5 +1,6 @@
 // write_result (run.h): a run's result as the HDF5 result file (gonio/io/result_writer.h).
 #include "gonio/io/result_writer.h"
+#include "gonio/run/memory_estimate.h"
 #include "gonio/run/run.h"
 
 namespace gonio {
@@ -27,6 +28,9 @@ void write_all(const RunResult& r, ResultWriter& writer) {
         run.merge(phases);
         t = PhaseTimes::Clock::now();
     }
+    // The estimate against what this process used at its peak (the result's arrays included).
+    if (r.execution.memory_estimate_bytes > 0)
+        writer.write_memory(r.execution.memory_estimate_bytes, peak_memory_bytes());
     run.add_since(Phase::writing, t);
     run.add(Phase::wall,
             std::chrono::duration<double>(PhaseTimes::Clock::now() - r.started).count());

@@ -42,6 +42,7 @@ struct RunOptions {
 // How the run was spread: provenance for the file (root attributes), not data.
 struct Execution {
     int ranks = 1, threads_per_rank = 1, merged_parts = 0;
+    double memory_estimate_bytes = 0; // memory_estimate.h, before the run (0: not estimated)
 };
 
 struct RunResult {

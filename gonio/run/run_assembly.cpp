@@ -30,6 +30,7 @@ RunContext run_context(const RunOptions& o) {
 RunResult empty_result(const Config& cfg, const RunOptions& o, bool simulated) {
     check_memory(cfg, simulated); // before any work: refused with the figures
     RunResult r;
+    r.execution.memory_estimate_bytes = estimate_memory(cfg, simulated).bytes;
     r.config = cfg;
     r.simulated = simulated;
     r.command_line = o.command_line;

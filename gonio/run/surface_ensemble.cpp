@@ -1,6 +1,7 @@
 #include "gonio/run/surface_ensemble.h"
 
 #include "core/batch_means.h"
+#include "core/buffer_pool.h"
 #include "core/check.h"
 #include "gonio/trace/batch_reducer.h"
 
@@ -43,8 +44,10 @@ void IncidenceEnsemble::add(TraceResult t) {
     // Freed, not just cleared: an ensemble keeps hundreds of these.
     for (auto v :
          {&t.energy_batches, &t.transmitted_batches, &t.energy_stderr, &t.transmitted_stderr})
-        std::vector<double>().swap(*v);
-    t.energy_sums = OrderSums{}, t.transmitted_sums = OrderSums{};
+        give_back(std::move(*v));
+    for (OrderSums* sums : {&t.energy_sums, &t.transmitted_sums})
+        for (auto field : {&OrderSums::l1, &OrderSums::l2plus, &OrderSums::linf})
+            give_back(std::move(sums->*field));
     t.ledger_batches = EnergyLedger{};
     t.ledger_stderr = EnergyLedger{};
     s.mean = std::move(t);
@@ -87,7 +90,7 @@ TraceResult IncidenceEnsemble::combined() const {
         batches.reserve(size_t(R) * (first.*mean).size());
         for (const Surface& s : surfaces_)
             batches.insert(batches.end(), (s.mean.*mean).begin(), (s.mean.*mean).end());
-        reduce_batches(batches, R, c.orders, c.*mean, c.*err, c.*sums);
+        reduce_batches(batches, R, c.orders, size_t(c.channels), c.*mean, c.*err, c.*sums);
     };
     maps(&TraceResult::energy, &TraceResult::energy_stderr, &TraceResult::energy_sums);
     maps(&TraceResult::transmitted, &TraceResult::transmitted_stderr,

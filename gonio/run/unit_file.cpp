@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <stdexcept>
+#include <utility>
 
 namespace gonio {
 
@@ -81,16 +82,36 @@ UnitFileWriter::UnitFileWriter(const std::string& path, const UnitFileHeader& h,
 }
 
 UnitFileWriter::~UnitFileWriter() {
-    close();
+    try {
+        close();
+    } catch (...) { // a destructor throws nothing: a write that failed was reported by close()
+    }
+}
+
+void UnitFileWriter::stop_writer() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stopping_ = true;
+    }
+    changed_.notify_all();
+    if (writer_.joinable()) writer_.join();
 }
 
 void UnitFileWriter::close() {
+    stop_writer();
     if (file_ >= 0 && H5Fclose(hid_t(file_)) < 0)
         h5::discard_file(hid_t(file_)); // (its last flush failed: no id may stay open)
     file_ = -1;
+    if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
 }
 
 void UnitFileWriter::discard() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        queue_.clear(); // nothing more is written
+    }
+    stop_writer();
+    failure_ = nullptr;
     h5::discard_file(hid_t(file_));
     file_ = -1;
     std::error_code ec;
@@ -99,22 +120,19 @@ void UnitFileWriter::discard() {
 
 namespace {
 // One unit's record, checksummed and flushed (so that it survives a kill).
-void write_record(hid_t file, long long number, const UnitId& id, const UnitResult& result) {
-    const std::vector<char> bytes = serialise(result);
+void write_record(hid_t file, long long number, const UnitId& id, const std::vector<char>& bytes) {
     const std::string name = "unit_" + std::to_string(number);
     const hsize_t n = bytes.size();
     h5::Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose, "dataspace");
     if (H5Lexists(file, name.c_str(), H5P_DEFAULT) > 0)
         H5Ldelete(file, name.c_str(), H5P_DEFAULT); // a unit redone after a kill
-    // Deflated in chunks (the batches' histograms are mostly zeros beyond the first orders), each
+    // Deflated in chunks (the maps are mostly zeros beyond the first orders), each
     // chunk with a Fletcher-32 checksum that HDF5 checks on reading: a flipped byte is refused.
     h5::Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "dataset creation property list");
     const hsize_t chunk = std::min<hsize_t>(std::max<hsize_t>(n, 1), hsize_t(1) << 20);
     h5::check(H5Pset_chunk(dcpl, 1, &chunk), "H5Pset_chunk");
     // Bytes shuffled first: the zeros and exponents of the doubles line up, and deflate then
     // takes a fraction of the time (the records were most of a spectral run's time).
-    h5::check(H5Pset_shuffle(dcpl), "H5Pset_shuffle");
-    // Bytes shuffled first, so that the doubles' zero and exponent bytes line up for deflate.
     h5::check(H5Pset_shuffle(dcpl), "H5Pset_shuffle");
     h5::check(H5Pset_deflate(dcpl, 1), "H5Pset_deflate");
     h5::check(H5Pset_fletcher32(dcpl), "H5Pset_fletcher32");
@@ -137,10 +155,43 @@ void UnitFileWriter::add(const NumberedUnit& u) {
 }
 
 void UnitFileWriter::add(long long number, const UnitId& id, const UnitResult& result) {
-    try {
-        write_record(hid_t(file_), number, id, result);
-    } catch (const std::exception& e) {
-        throw std::runtime_error(path_ + ": " + e.what());
+    Record r{number, id, serialise(result)};
+    std::unique_lock<std::mutex> lock(mutex_);
+    // One record queued at most: the trace waits for the disk only when it outruns it.
+    changed_.wait(lock, [&] { return queue_.empty() || failure_; });
+    if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
+    queue_.push_back(std::move(r));
+    if (!writer_.joinable())
+        writer_ = std::thread([this] {
+            h5::silence_errors(); // HDF5's error stack is per thread: its errors become ours
+            write_queued();
+        });
+    lock.unlock();
+    changed_.notify_all();
+}
+
+void UnitFileWriter::write_queued() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+        changed_.wait(lock, [&] { return !queue_.empty() || stopping_; });
+        if (queue_.empty()) return; // stopping, and every record written
+        Record r = std::move(queue_.front());
+        queue_.pop_front();
+        lock.unlock();
+        changed_.notify_all(); // room for the next record
+        std::exception_ptr failed;
+        try {
+            write_record(hid_t(file_), r.number, r.id, r.bytes);
+        } catch (const std::exception& e) {
+            failed = std::make_exception_ptr(std::runtime_error(path_ + ": " + e.what()));
+        }
+        lock.lock();
+        if (failed) {
+            failure_ = failed;
+            queue_.clear();
+            changed_.notify_all();
+            return;
+        }
     }
 }
 

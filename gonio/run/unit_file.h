@@ -7,7 +7,12 @@
 #include "gonio/config/config.h"
 #include "gonio/run/unit.h"
 
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace gonio {
@@ -25,6 +30,11 @@ struct UnitFileHeader {
 // The identity of a run of `cfg` (every unit of the config; shard "0/1").
 UnitFileHeader run_identity(const Config& cfg, const std::string& command_line);
 
+// Records are written by a thread of the writer's own, so that a finished unit is written while
+// the next one traces: add() serialises the unit (the caller may then free it) and queues its
+// bytes, waiting only while another record is still queued. Each record is flushed when written,
+// so a kill -9 loses at most the units in flight; a write's failure is thrown by the next add()
+// or by close().
 class UnitFileWriter {
   public:
     // Creates `path` (or, with `append`, opens an existing file of the same run to add units).
@@ -32,17 +42,31 @@ class UnitFileWriter {
     ~UnitFileWriter();
     UnitFileWriter(const UnitFileWriter&) = delete;
     UnitFileWriter& operator=(const UnitFileWriter&) = delete;
-    // Adds a unit and flushes the file, so that it survives a kill.
+    // Queues a unit for writing (and flushing, so that it survives a kill).
     void add(const NumberedUnit& u);
-    // The same without a copy of the result (a spectral unit holds hundreds of megabytes).
+    // The same without a copy of the result.
     void add(long long number, const UnitId& id, const UnitResult& result);
+    // Writes what is queued and closes the file; throws if a write failed.
     void close();
     // Closes and removes the file (a run that failed leaves no unit file behind).
     void discard();
 
   private:
+    struct Record {
+        long long number = 0;
+        UnitId id;
+        std::vector<char> bytes;
+    };
+    void write_queued(); // the writer thread
+    void stop_writer();  // waits for the queue to empty and the thread to end
     std::string path_;
     long long file_ = -1; // hid_t
+    std::thread writer_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    std::deque<Record> queue_;
+    bool stopping_ = false;
+    std::exception_ptr failure_;
 };
 
 // Throws std::runtime_error naming the file if it is not a unit file.

@@ -1,6 +1,7 @@
 #include "gonio/trace/batch_tally.h"
 
 #include "core/batch_means.h"
+#include "core/buffer_pool.h"
 #include "core/check.h"
 
 #include <algorithm>
@@ -48,6 +49,10 @@ double inverse(long long rays) {
 BatchTally::BatchTally(int batches, int orders, int cells, int channels, bool transmits)
     : batches_(batches), orders_(orders), cells_(cells), nc_(channels), transmits_(transmits) {}
 
+BatchTally::~BatchTally() {
+    give_back(std::move(energy_)), give_back(std::move(transmitted_));
+}
+
 void BatchTally::keep(BatchKeeping k) {
     GONIO_CHECK_MSG(!allocated_, "a tally's keeping is chosen before its first merge");
     keep_ = k;
@@ -58,33 +63,42 @@ void BatchTally::allocate() {
     allocated_ = true;
     const size_t n = size_t(cells_) * size_t(nc_), map = size_t(orders_) * n, B = size_t(batches_);
     const size_t kept = keep_ == BatchKeeping::stream ? 1 : B;
-    energy_.assign(kept * map, 0.0);
-    if (transmits_) transmitted_.assign(kept * map, 0.0), through_.assign(B * orders_ * nc_, 0.0);
+    energy_ = take_zeroed(kept * map);
+    if (transmits_) transmitted_ = take_zeroed(kept * map), through_.assign(B * orders_ * nc_, 0.0);
     reflected_.assign(B * orders_ * nc_, 0.0);
     absorbed_.assign(B * nc_, 0.0), capped_.assign(B * nc_, 0.0), lost_.assign(B * nc_, 0.0);
     rays_.assign(B, 0);
     if (keep_ == BatchKeeping::stream) {
-        energy_reducer_ = std::make_unique<BatchReducer>(batches_, orders_, n);
-        if (transmits_) transmitted_reducer_ = std::make_unique<BatchReducer>(batches_, orders_, n);
+        energy_reducer_ = std::make_unique<BatchReducer>(batches_, orders_, cells_, nc_);
+        if (transmits_)
+            transmitted_reducer_ = std::make_unique<BatchReducer>(batches_, orders_, cells_, nc_);
+        for (OpenRows& open : open_rows_) open.marked.assign(size_t(orders_) * cells_, 0);
     }
 }
 
 // Streaming: the open batch divided by its rays into the reducers (batches never opened, of no
-// rays, as zeros before it), and its maps cleared for the next.
+// rays, as zeros before it), and its maps cleared for the next. Only the rows (an order's cell)
+// its rays reached are worked on.
 void BatchTally::close_open_batch() {
     if (open_ < 0) return;
-    const std::vector<double> zeros(energy_.size(), 0.0);
+    std::vector<std::uint32_t> none;
     for (; reduced_ < open_; ++reduced_) {
-        energy_reducer_->add(zeros.data());
-        if (transmits_) transmitted_reducer_->add(zeros.data());
+        energy_reducer_->add(nullptr, none);
+        if (transmits_) transmitted_reducer_->add(nullptr, none);
     }
     const double scale = inverse(rays_[size_t(open_)]);
-    for (auto [map, reducer] : {std::pair{&energy_, energy_reducer_.get()},
-                                std::pair{&transmitted_, transmitted_reducer_.get()}}) {
-        if (!reducer) continue;
-        for (double& v : *map) v *= scale;
-        reducer->add(map->data());
-        std::fill(map->begin(), map->end(), 0.0);
+    for (int side = 0; side < (transmits_ ? 2 : 1); ++side) {
+        std::vector<double>& map = side == 0 ? energy_ : transmitted_;
+        BatchReducer& reducer = side == 0 ? *energy_reducer_ : *transmitted_reducer_;
+        OpenRows& open = open_rows_[size_t(side)];
+        for (std::uint32_t row : open.touched)
+            for (size_t k = 0; k < size_t(nc_); ++k) map[row * size_t(nc_) + k] *= scale;
+        reducer.add(map.data(), open.touched);
+        for (std::uint32_t row : open.touched) {
+            std::fill_n(&map[row * size_t(nc_)], size_t(nc_), 0.0);
+            open.marked[row] = 0;
+        }
+        open.touched.clear();
     }
     reduced_ = open_ + 1;
     open_ = -1;
@@ -111,6 +125,10 @@ void BatchTally::merge(int b, const BlockOutput& o, long long rays) {
         const size_t bin = up ? size_t(o.bin[e]) : size_t(o.bin[e]) - upper, order = bin / cells_;
         double* map_sum = up ? energy : transmitted;
         double* order_sum = up ? reflected : through;
+        if (keep_ == BatchKeeping::stream) {
+            OpenRows& open = open_rows_[up ? 0 : 1];
+            if (!open.marked[bin]) open.marked[bin] = 1, open.touched.push_back(std::uint32_t(bin));
+        }
         for (int k = 0; k < nc_; ++k) {
             map_sum[bin * nc_ + k] += o.weight[e * nc_ + k];
             order_sum[order * nc_ + k] += o.weight[e * nc_ + k];
@@ -150,10 +168,10 @@ TraceResult BatchTally::finish() {
     if (keep_ == BatchKeeping::stream) {
         GONIO_CHECK_MSG(energy_reducer_, "a streaming tally is finished once");
         close_open_batch();
-        const std::vector<double> zeros(energy_.size(), 0.0); // batches never opened: no rays
+        std::vector<std::uint32_t> none; // batches never opened: no rays
         for (; reduced_ < B; ++reduced_) {
-            energy_reducer_->add(zeros.data());
-            if (transmits_) transmitted_reducer_->add(zeros.data());
+            energy_reducer_->add(nullptr, none);
+            if (transmits_) transmitted_reducer_->add(nullptr, none);
         }
         energy_reducer_->finish(res.energy, res.energy_stderr, res.energy_sums);
         if (transmits_)
@@ -168,7 +186,7 @@ TraceResult BatchTally::finish() {
     auto reduce = [&](const std::vector<double>& sums, std::vector<double>& mean,
                       std::vector<double>& stderr, OrderSums& order_sums,
                       std::vector<double>& handed_on) {
-        BatchReducer r(B, orders_, size_t(cells_) * nc_);
+        BatchReducer r(B, orders_, size_t(cells_), size_t(nc_));
         if (keep_ == BatchKeeping::hand_on) handed_on.resize(size_t(B) * map);
         for (int b = 0; b < B; ++b) {
             const double scale = inverse(rays_[size_t(b)]);
@@ -189,10 +207,11 @@ TraceResult BatchTally::finish() {
 
 void BatchTally::complete(TraceResult& res, bool transmits, bool hand_on) {
     const int B = res.batches, orders = res.orders;
-    reduce_batches(res.energy_batches, B, orders, res.energy, res.energy_stderr, res.energy_sums);
+    reduce_batches(res.energy_batches, B, orders, size_t(res.channels), res.energy,
+                   res.energy_stderr, res.energy_sums);
     if (transmits)
-        reduce_batches(res.transmitted_batches, B, orders, res.transmitted, res.transmitted_stderr,
-                       res.transmitted_sums);
+        reduce_batches(res.transmitted_batches, B, orders, size_t(res.channels), res.transmitted,
+                       res.transmitted_stderr, res.transmitted_sums);
     if (!hand_on)
         for (auto v : {&res.energy_batches, &res.transmitted_batches})
             std::vector<double>().swap(*v);

@@ -12,6 +12,7 @@
 #include "gonio/trace/batch_reducer.h"
 #include "gonio/trace/trace_result.h"
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -37,6 +38,9 @@ enum class BatchKeeping {
 class BatchTally {
   public:
     BatchTally(int batches, int orders, int cells, int channels, bool transmits);
+    ~BatchTally(); // its maps kept for the next tally (core/buffer_pool.h)
+    BatchTally(const BatchTally&) = delete;
+    BatchTally& operator=(const BatchTally&) = delete;
     // Before the first merge (the default: memory).
     void keep(BatchKeeping k);
     // Adds a block of `rays` rays to batch b. Blocks must come in a fixed order (sums in floating
@@ -65,6 +69,11 @@ class BatchTally {
     std::vector<long long> rays_;
     long long segments_ = 0;
     std::unique_ptr<BatchReducer> energy_reducer_, transmitted_reducer_; // streaming
+    struct OpenRows { // the rows (order * cells + cell) the open batch reached, per side
+        std::vector<std::uint8_t> marked;
+        std::vector<std::uint32_t> touched;
+    };
+    OpenRows open_rows_[2];
 };
 
 } // namespace gonio

@@ -1,6 +1,7 @@
 #include "gonio/trace/trace_result.h"
 
 #include "core/batch_means.h"
+#include "core/buffer_pool.h"
 #include "core/check.h"
 
 namespace gonio {
@@ -32,7 +33,9 @@ void TraceResult::drop_order_sums() {
                                 std::pair{&transmitted_sums, &transmitted_sums_stderr}})
         for (auto field : {&OrderSums::l1, &OrderSums::l2plus, &OrderSums::linf})
             if (!(sums->*field).empty()) errors->*field = batch_stderr(sums->*field, batches);
-    energy_sums = OrderSums{}, transmitted_sums = OrderSums{};
+    for (OrderSums* sums : {&energy_sums, &transmitted_sums})
+        for (auto field : {&OrderSums::l1, &OrderSums::l2plus, &OrderSums::linf})
+            give_back(std::move(sums->*field));
 }
 
 } // namespace gonio
