@@ -6,8 +6,10 @@
 // height-field traversal: the same random streams, so the same beam rays. Beam rays per second,
 // segments per second (a segment: one straight piece of a ray between bounces and walls), the
 // memory of each acceleration structure, and the speed-up (best of `repeats` runs each,
-// alternating). The last two lines: the 1024^2, 2-thread speed-up at theta_i 89.9 deg and at
-// 60 deg (the sizes and angles run, when --size or --theta picks others).
+// alternating). Beside each, the beam rays' first hits alone through Embree one by one, Embree's
+// packets of 8 (rtcIntersect8) and the height field. The last lines: the 1024^2, 2-thread
+// speed-up at theta_i 89.9 deg, the beam rays' against Embree's best, and the speed-up at 60 deg
+// (the sizes and angles run, when --size or --theta picks others).
 //
 // hits: hit for hit. The segments the Embree pipeline gives Embree (every bounce and wrap,
 // recorded) replayed through both backends; each segment's first hit compared (same triangle,
@@ -88,6 +90,57 @@ void bare_rates(Scene& embree, const Scene& walk, const Material& material,
                 threads, best[0] / 1e6, best[1] / 1e6, best[1] / best[0]);
 }
 
+// The honest baseline: beam rays alone (coherent: neighbours in a packet), first hits through
+// Embree one by one (rtcIntersect1), Embree's packets of 8 (rtcIntersect8), and the height
+// field. The segments start just above the surface's top, spread over the patch in rows as a
+// beam's are; a segment that leaves through a side wall is a miss for all three.
+struct BeamRates {
+    double embree1 = 0, embree8 = 0, heightfield = 0; // rays per second, best of the repeats
+    long long rays = 0, packet_disagree = 0, heightfield_disagree = 0; // against rtcIntersect1
+};
+BeamRates beam_rates(const Scene& embree, const Scene& walk, const Vec3& wi, long long rays,
+                     int threads, int repeats) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    const long long side = std::max(1LL, (long long)std::sqrt(double(rays)));
+    const size_t count = size_t(side * side);
+    std::vector<float> segs(6 * count);
+    const double L = walk.period(), z = walk.z_max() + walk.epsilon();
+    for (size_t i = 0; i < count; ++i) {
+        float* s = &segs[6 * i];
+        s[0] = float((double(i % size_t(side)) + 0.5) / double(side) * L);
+        s[1] = float((double(i / size_t(side)) + 0.5) / double(side) * L);
+        s[2] = float(z);
+        s[3] = float(-wi.x), s[4] = float(-wi.y), s[5] = float(-wi.z);
+    }
+    std::vector<double> t(count), single;
+    BeamRates best;
+    const size_t grain = 4096; // a multiple of the packet width
+    for (int r = 0; r < repeats; ++r)
+        for (int k = 0; k < 3; ++k) {
+            const auto t0 = Clock::now();
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, count, grain),
+                              [&](const tbb::blocked_range<size_t>& b) {
+                                  const float* from = &segs[6 * b.begin()];
+                                  if (k == 1)
+                                      embree.intersect_packets(from, b.size(), &t[b.begin()]);
+                                  else
+                                      for (size_t i = b.begin(); i < b.end(); ++i)
+                                          t[i] = (k == 0 ? embree : walk)
+                                                     .intersect(&segs[6 * i], &segs[6 * i + 3])
+                                                     .t;
+                              });
+            double& b = k == 0 ? best.embree1 : k == 1 ? best.embree8 : best.heightfield;
+            b = std::max(b, double(count) / seconds_since(t0));
+            if (r == 0 && k == 0) single = t;
+            if (r == 0 && k > 0) // the same hits: t within 1e-6 relative, or both none
+                for (size_t i = 0; i < count; ++i)
+                    if (!(t[i] == single[i] || std::abs(t[i] - single[i]) <= 1e-6 * single[i]))
+                        ++(k == 1 ? best.packet_disagree : best.heightfield_disagree);
+        }
+    best.rays = (long long)count;
+    return best;
+}
+
 int speed(bool quick, long long rays, int repeats, int only_size, double only_theta, bool bare,
           const std::string& only_backend) {
     std::vector<int> sizes = quick ? std::vector<int>{256} : std::vector<int>{256, 1024, 4096};
@@ -105,6 +158,8 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
                 "embree ray/s", "Mseg/s", "hfield ray/s", "Mseg/s", "speedup");
     // Speed-ups at 2 threads by (size, theta), for the summary lines.
     std::map<std::pair<int, double>, double> two_threads;
+    // The height field's beam rays against Embree's best (one by one or in packets).
+    std::map<std::pair<int, double>, double> beam_two_threads;
     std::vector<std::string> memory;
     for (int n : sizes) {
         const HeightField surface = surface_of(Beckmann(0.75), n);
@@ -138,12 +193,22 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
                         k.segments = res.segments;
                     }
                 if (bare) bare_rates(embree, walk, mirror, sensor, wi, st, threads, repeats);
+                const BeamRates beam = beam_rates(embree, walk, wi, rays, threads, repeats);
+                std::printf("    beam rays' first hits, %d thread(s): embree %.3f Mray/s, embree "
+                            "packets of 8 %.3f Mray/s, heightfield %.3f Mray/s (of %lld rays, "
+                            "%lld and %lld hit elsewhere than rtcIntersect1)\n",
+                            threads, beam.embree1 / 1e6, beam.embree8 / 1e6, beam.heightfield / 1e6,
+                            beam.rays, beam.packet_disagree, beam.heightfield_disagree);
                 const double speedup = h.rays_per_s / e.rays_per_s;
                 std::printf("%6d %6.1f %7d | %12.0f %9.3f | %12.0f %9.3f | %7.2f\n", n, theta,
                             threads, e.rays_per_s, e.segments_per_s / 1e6, h.rays_per_s,
                             h.segments_per_s / 1e6, speedup);
                 std::fflush(stdout);
-                if (threads == 2) two_threads[{n, theta}] = speedup;
+                if (threads == 2) {
+                    two_threads[{n, theta}] = speedup;
+                    beam_two_threads[{n, theta}] =
+                        beam.heightfield / std::max(beam.embree1, beam.embree8);
+                }
             }
         }
     }
@@ -161,6 +226,9 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
         std::printf("speedup heightfield/embree at grazing incidence (%d\u00b2, \u03b1 0.75, "
                     "\u03b8i 89.9\u00b0, 2 threads): %.2f\n",
                     at, two_threads[{at, 89.9}]);
+    std::printf("beam rays' first hits, heightfield against Embree's best of rtcIntersect1 and "
+                "rtcIntersect8 (%d\u00b2, \u03b8i %g\u00b0, 2 threads): %.2f\n",
+                at, headline_theta, beam_two_threads[{at, headline_theta}]);
     std::printf("speedup heightfield/embree (%d\u00b2, \u03b1 0.75, \u03b8i %g\u00b0, 2 threads): "
                 "%.2f\n",
                 at, headline_theta, two_threads[{at, headline_theta}]);

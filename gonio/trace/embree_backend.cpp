@@ -89,6 +89,7 @@ class EmbreeBackend final : public TraceBackend {
     void trace(Vec3 o, const Vec3& d, double side, int max_wraps, const BeamEntry*,
                SurfaceHit& r) const override;
     SegmentHit intersect(const float o[3], const float d[3]) const override;
+    void intersect_packets(const float* segments, std::size_t n, double* t) const override;
     Vec3 vertex(int i, int j) const override {
         const float* p = vertices_ + 3 * (size_t(j) * size_t(n_ + 1) + size_t(i));
         return {p[0], p[1], p[2]};
@@ -146,6 +147,34 @@ class EmbreeBackend final : public TraceBackend {
     const float* vertices_ = nullptr; // (n+1)^2 x y z floats, as Embree holds them
     std::vector<float>* recorder_ = nullptr;
 };
+
+void EmbreeBackend::intersect_packets(const float* s, std::size_t n, double* t) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT; // neighbours in a packet: a beam's rays
+    constexpr std::size_t W = 8;                         // AVX2's native packet (max_isa=avx2)
+    for (std::size_t first = 0; first < n; first += W) {
+        alignas(32) int valid[W];
+        alignas(32) RTCRayHit8 rh;
+        for (std::size_t k = 0; k < W; ++k) {
+            const std::size_t i = std::min(first + k, n - 1);
+            const float* o = s + 6 * i;
+            valid[k] = first + k < n ? -1 : 0;
+            rh.ray.org_x[k] = o[0], rh.ray.org_y[k] = o[1], rh.ray.org_z[k] = o[2];
+            rh.ray.dir_x[k] = o[3], rh.ray.dir_y[k] = o[4], rh.ray.dir_z[k] = o[5];
+            rh.ray.tnear[k] = 0.0f, rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+            rh.ray.time[k] = 0.0f, rh.ray.mask[k] = 0xFFFFFFFFu;
+            rh.ray.id[k] = 0, rh.ray.flags[k] = 0;
+            rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        }
+        rtcIntersect8(valid, scene_, &context, &rh);
+        for (std::size_t k = 0; k < W && first + k < n; ++k)
+            t[first + k] = rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID
+                               ? std::numeric_limits<double>::infinity()
+                               : double(rh.ray.tfar[k]);
+    }
+}
 
 SegmentHit EmbreeBackend::intersect(const float o[3], const float d[3]) const {
     SegmentHit h;

@@ -58,6 +58,10 @@ class Scene {
     SegmentHit intersect(const float origin[3], const float dir[3]) const {
         return backend_->intersect(origin, dir);
     }
+    // n segments [n][origin, dir] at once, their first hits' t, through the backend's packets.
+    void intersect_packets(const float* segments, std::size_t n, double* t) const {
+        backend_->intersect_packets(segments, n, t);
+    }
     // Vertex (i, j) of the triangulated surface, i, j in [0, n], as the backend holds it.
     Vec3 vertex(int i, int j) const { return backend_->vertex(i, j); }
 

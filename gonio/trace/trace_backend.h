@@ -48,6 +48,13 @@ class TraceBackend {
                        const BeamEntry* beam, SurfaceHit& r) const = 0;
     // One segment, no wrapping: the first triangle at t >= 0 from either side in the patch.
     virtual SegmentHit intersect(const float origin[3], const float dir[3]) const = 0;
+    // For the benchmark: the first hits' t (infinity: none) of n segments [n][origin, dir], as
+    // intersect() finds them, through the widest ray packets the library has (Embree's
+    // rtcIntersect8); one by one by default.
+    virtual void intersect_packets(const float* segments, std::size_t n, double* t) const {
+        for (std::size_t i = 0; i < n; ++i)
+            t[i] = intersect(segments + 6 * i, segments + 6 * i + 3).t;
+    }
     // Vertex (i, j), i, j in [0, n], and the triangulated height at (x, y), as the backend holds
     // the surface.
     virtual Vec3 vertex(int i, int j) const = 0;
