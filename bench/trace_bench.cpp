@@ -37,6 +37,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tuple>
 #include <vector>
 
 using namespace gonio;
@@ -60,9 +61,10 @@ struct Rate {
 };
 
 // The backends alone (one bare call per segment) on the segments the Embree pipeline traced.
-void bare_rates(Scene& embree, const Scene& walk, const Material& material,
-                const BeckersSensor& sensor, const Vec3& wi, const TraceSettings& st, int threads,
-                int repeats) {
+// Returns the segments per second of each (Embree, the height field).
+std::pair<double, double> bare_rates(Scene& embree, const Scene& walk, const Material& material,
+                                     const BeckersSensor& sensor, const Vec3& wi,
+                                     const TraceSettings& st, int threads, int repeats) {
     std::vector<float> segs;
     {
         tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
@@ -88,6 +90,7 @@ void bare_rates(Scene& embree, const Scene& walk, const Material& material,
     std::printf("    bare segments, %d thread(s): embree %.3f Mseg/s, heightfield %.3f Mseg/s, "
                 "ratio %.2f\n",
                 threads, best[0] / 1e6, best[1] / 1e6, best[1] / best[0]);
+    return {best[0], best[1]};
 }
 
 // The honest baseline: beam rays alone (coherent: neighbours in a packet), first hits through
@@ -192,7 +195,21 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
                         k.segments_per_s = std::max(k.segments_per_s, double(res.segments) / sec);
                         k.segments = res.segments;
                     }
-                if (bare) bare_rates(embree, walk, mirror, sensor, wi, st, threads, repeats);
+                if (bare) {
+                    // A ray's time split: its segments' traversal (the bare rate) and the rest
+                    // (beam, binning, random numbers, Fresnel, ledger).
+                    const auto [e_seg, h_seg] =
+                        bare_rates(embree, walk, mirror, sensor, wi, st, threads, repeats);
+                    for (const auto& [name, rate, seg] :
+                         {std::tuple{"embree", e, e_seg}, std::tuple{"heightfield", h, h_seg}}) {
+                        const double per_ray = 1e9 / rate.rays_per_s;
+                        const double traversal = 1e9 * rate.segments_per_s / rate.rays_per_s / seg;
+                        std::printf("    %s, %d thread(s): %.0f ns a ray = traversal %.0f + the "
+                                    "rest %.0f (%.2f segments a ray)\n",
+                                    name, threads, per_ray, traversal, per_ray - traversal,
+                                    rate.segments_per_s / rate.rays_per_s);
+                    }
+                }
                 const BeamRates beam = beam_rates(embree, walk, wi, rays, threads, repeats);
                 std::printf("    beam rays' first hits, %d thread(s): embree %.3f Mray/s, embree "
                             "packets of 8 %.3f Mray/s, heightfield %.3f Mray/s (of %lld rays, "
