@@ -172,6 +172,10 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
         t0 = Clock::now();
         const Scene walk(surface, heightfield_backend());
         const double walk_build = seconds_since(t0);
+        // The height field traced by its scalar walk, one ray at a time: what the lanes gain.
+        setenv("GONIO_HEIGHTFIELD_LANES", "0", 1);
+        const Scene scalar_walk(surface, heightfield_backend());
+        unsetenv("GONIO_HEIGHTFIELD_LANES");
         char line[200];
         std::snprintf(line, sizeof line, "%6d %14.1f %10.3f %14.1f %10.3f %8.1f %10.1f", n,
                       embree.memory_bytes() / 1048576.0, embree_build,
@@ -183,18 +187,23 @@ int speed(bool quick, long long rays, int repeats, int only_size, double only_th
             const Vec3 wi = spherical_direction(radians(theta), 0.0);
             for (int threads : {1, 2}) {
                 tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-                Rate e, h;
+                Rate e, h, hs;
                 for (int r = 0; r < repeats; ++r)
-                    for (const Scene* s : {static_cast<const Scene*>(&embree), &walk}) {
+                    for (const Scene* s :
+                         {static_cast<const Scene*>(&embree), &walk, &scalar_walk}) {
                         if (!only_backend.empty() && only_backend != s->backend().name) continue;
                         const auto t = Clock::now();
                         const TraceResult res = trace_incidence(*s, mirror, sensor, wi, st);
                         const double sec = seconds_since(t);
-                        Rate& k = s == &embree ? e : h;
+                        Rate& k = s == &embree ? e : s == &walk ? h : hs;
                         k.rays_per_s = std::max(k.rays_per_s, double(res.rays) / sec);
                         k.segments_per_s = std::max(k.segments_per_s, double(res.segments) / sec);
                         k.segments = res.segments;
                     }
+                if (hs.rays_per_s > 0)
+                    std::printf("    height field in SIMD lanes against its scalar walk, %d "
+                                "thread(s): %.0f against %.0f ray/s, ratio %.2f\n",
+                                threads, h.rays_per_s, hs.rays_per_s, h.rays_per_s / hs.rays_per_s);
                 if (bare) {
                     // A ray's time split: its segments' traversal (the bare rate) and the rest
                     // (beam, binning, random numbers, Fresnel, ledger).

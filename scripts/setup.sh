@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 
 packages=(
   build-essential cmake pkg-config git
-  libembree-dev libfftw3-dev libopenexr-dev libhdf5-dev libtbb-dev
+  libembree-dev libfftw3-dev libopenexr-dev libhdf5-dev libtbb-dev libhwy-dev
   libcli11-dev libtomlplusplus-dev doctest-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   libopenmpi-dev openmpi-bin libceres-dev libzip-dev libpugixml-dev libssl-dev pybind11-dev python3-pybind11 python3-pytest python3-mypy
   python3-h5py python3-numpy python3-matplotlib python3-xarray python3-h5netcdf

@@ -22,71 +22,90 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
     // Every batch's beam rays start on the top plane along `down`: they may start lower.
     const BeamEntry beam = scene.beam_entry(down, std::max(1LL, st.rays));
 
+    // A block's rays are traced a generation at a time: every live ray's next segment in one
+    // stream (Scene::trace_stream), so that a backend can trace them side by side; then each
+    // segment's end is handled in the rays' order (the random numbers are drawn in that order,
+    // so the result does not depend on how the backend schedules its rays).
     auto trace_block = [&](long long id, long long first, long long last, BlockOutput& o) {
         o.clear(nc);
         long long segments = 0; // counted locally: neighbouring blocks may share a cache line
         Rng rng{st.seed, st.stream, std::uint64_t(id)};
-        std::vector<double> w(nc), before(nc);
+        const size_t count = size_t(last - first);
+        std::vector<StreamRay> rays(count), next_rays;
+        std::vector<SurfaceHit> hits(count);
+        std::vector<int> bounces(count, 0), next_bounces;
+        // Each ray's power, divided by the batch's rays when finished.
+        std::vector<double> w(count * size_t(nc), 1.0), next_w;
+        std::vector<double> before(static_cast<size_t>(nc));
+        next_rays.reserve(count), next_bounces.reserve(count), next_w.reserve(w.size());
         // Ray r of the batch's beam lies in grid cell (r mod S, r div S); the cell is stepped
         // rather than divided out per ray.
         long long cx = first % side, cy = first / side;
         const double cell = L / double(side);
-        for (long long r = first; r < last; ++r) {
+        for (size_t r = 0; r < count; ++r) {
             const double x = (double(cx) + rng.uniform()) * cell;
             const double y = (double(cy) + rng.uniform()) * cell;
-            Vec3 origin{x, y, scene.z_max() + eps};
-            Vec3 dir = down;
-            std::fill(w.begin(), w.end(), 1.0); // divided by the batch's rays when finished
-            int bounces = 0;
-            bool below = false; // travelling under the surface (transmissive materials only)
-            // The ray's remaining power ends in a ledger entry.
-            auto spend = [&](std::vector<double>& entry) {
-                for (int k = 0; k < nc; ++k) entry[k] += w[k];
-            };
-            for (;;) {
-                const SurfaceHit h = scene.trace(origin, dir, below, Scene::kMaxWraps,
-                                                 bounces == 0 ? &beam : nullptr);
+            rays[r] = StreamRay{{x, y, scene.z_max() + eps}, down, false, &beam};
+            if (++cx == side) cx = 0, ++cy;
+        }
+        while (!rays.empty()) {
+            hits.resize(rays.size());
+            scene.trace_stream(rays.data(), rays.size(), Scene::kMaxWraps, hits.data());
+            next_rays.clear(), next_bounces.clear(), next_w.clear();
+            for (size_t r = 0; r < rays.size(); ++r) {
+                const SurfaceHit& h = hits[r];
+                const Vec3 dir = rays[r].dir;
+                const bool below = rays[r].below;
+                double* wr = w.data() + r * size_t(nc);
+                int ray_bounces = bounces[r];
                 segments += h.wraps + 1;
+                // The ray's remaining power ends in a ledger entry.
+                auto spend = [&](std::vector<double>& entry) {
+                    for (int k = 0; k < nc; ++k) entry[size_t(k)] += wr[k];
+                };
                 if (h.kind == SurfaceHit::escaped_up || h.kind == SurfaceHit::escaped_down) {
                     // A ray leaves for good only upwards from above and downwards from below; and
                     // a beam aimed down cannot leave before a bounce. Anything else is a failure.
                     const bool up = h.kind == SurfaceHit::escaped_up;
-                    if (bounces == 0 || up == below) {
+                    if (ray_bounces == 0 || up == below) {
                         spend(o.lost);
-                        break;
+                        continue;
                     }
-                    const int order = std::min(bounces, orders) - 1;
+                    const int order = std::min(ray_bounces, orders) - 1;
                     o.bin.push_back(up ? order : orders + order);
                     o.exit.push_back(dir);
-                    o.weight.insert(o.weight.end(), w.begin(), w.end());
-                    break;
+                    o.weight.insert(o.weight.end(), wr, wr + nc);
+                    continue;
                 }
                 if (h.kind != SurfaceHit::hit) { // wrapped without end
                     spend(o.lost);
-                    break;
+                    continue;
                 }
-                if (bounces == st.max_bounces) {
+                if (ray_bounces == st.max_bounces) {
                     spend(o.capped);
-                    break;
+                    continue;
                 }
-                ++bounces;
-                for (int k = 0; k < nc; ++k) before[k] = w[k];
+                ++ray_bounces;
+                std::copy(wr, wr + nc, before.begin());
                 Vec3 next;
-                const bool alive = material.scatter(-dir, h.normal, rng, next, w.data());
-                for (int k = 0; k < nc; ++k) o.absorbed[k] += before[k] - (alive ? w[k] : 0.0);
-                if (!alive) break;
+                const bool alive = material.scatter(-dir, h.normal, rng, next, wr);
+                for (int k = 0; k < nc; ++k)
+                    o.absorbed[size_t(k)] += before[size_t(k)] - (alive ? wr[k] : 0.0);
+                if (!alive) continue;
                 // Unit already: reflection and refraction keep the length, sampling returns unit.
-                dir = next;
                 // Leave the facet on the side the ray goes, by Scene::epsilon() (one float ulp).
-                const double along = dot(dir, h.normal);
-                if (transmits) below = along < 0;
-                origin = h.position + (along >= 0 ? eps : -eps) * h.normal;
+                const double along = dot(next, h.normal);
+                const bool next_below = transmits ? along < 0 : below;
+                next_rays.push_back(StreamRay{h.position + (along >= 0 ? eps : -eps) * h.normal,
+                                              next, next_below, nullptr});
+                next_bounces.push_back(ray_bounces);
+                next_w.insert(next_w.end(), wr, wr + nc);
             }
-            if (++cx == side) cx = 0, ++cy;
+            rays.swap(next_rays), bounces.swap(next_bounces), w.swap(next_w);
         }
         o.segments = segments;
         // Bin the block's exits in one pass: the sensor's tables stay in cache (between bounces
-        // Embree's traversal evicts them) and the lookups overlap.
+        // the traversal evicts them) and the lookups overlap.
         for (size_t e = 0; e < o.bin.size(); ++e)
             o.bin[e] = o.bin[e] * cells + (o.bin[e] < orders ? sensor.lookup(o.exit[e])
                                                              : sensor.lookup_lower(o.exit[e]));

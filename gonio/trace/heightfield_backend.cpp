@@ -4,6 +4,7 @@
 #include "gonio/trace/trace_backend.h"
 
 #include <limits>
+#include <vector>
 
 namespace gonio {
 
@@ -44,6 +45,43 @@ class HeightfieldBackend final : public TraceBackend {
         }
     }
 
+    // The stream's rays side by side (HeightfieldTraversal::trace_lanes); what trace() does after
+    // the walk, per ray; a ray that met a facet from the wrong side is traced again by trace().
+    void trace_stream(const StreamRay* rays, std::size_t n, int max_wraps,
+                      SurfaceHit* hits) const override {
+        std::vector<LaneRay>& in = lane_rays();
+        std::vector<TraversalHit>& out = lane_hits();
+        in.resize(n), out.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+            in[i] = LaneRay{rays[i].origin, rays[i].dir, max_wraps, rays[i].beam};
+        walk_.trace_lanes(in.data(), n, box_.z_max + box_.epsilon, box_.z_min - box_.epsilon,
+                          out.data());
+        for (std::size_t i = 0; i < n; ++i) {
+            const TraversalHit& h = out[i];
+            SurfaceHit& r = hits[i];
+            r.wraps = h.wraps;
+            if (h.kind == TraversalHit::escaped_up || h.kind == TraversalHit::escaped_down) {
+                r.kind = h.kind == TraversalHit::escaped_up ? SurfaceHit::escaped_up
+                                                            : SurfaceHit::escaped_down;
+                continue;
+            }
+            if (h.kind != TraversalHit::hit) {
+                r.kind = SurfaceHit::lost;
+                continue;
+            }
+            const Vec3 up = normalize(h.normal);
+            const double side = rays[i].below ? -1.0 : 1.0;
+            if (side * dot(rays[i].dir, up) > 0) { // rare: the re-entries of trace()
+                r.wraps = 0;
+                trace(rays[i].origin, rays[i].dir, side, max_wraps, rays[i].beam, r);
+                continue;
+            }
+            r.kind = SurfaceHit::hit;
+            r.normal = up;
+            r.position = h.position;
+        }
+    }
+
     SegmentHit intersect(const float o[3], const float d[3]) const override {
         SegmentHit h;
         const Vec3 origin{o[0], o[1], o[2]}, dir{d[0], d[1], d[2]};
@@ -66,6 +104,15 @@ class HeightfieldBackend final : public TraceBackend {
     std::size_t memory_bytes() const override { return walk_.memory_bytes(); }
 
   private:
+    // Per thread, the stream's rays and hits as the traversal takes them (kept between calls).
+    static std::vector<LaneRay>& lane_rays() {
+        thread_local std::vector<LaneRay> v;
+        return v;
+    }
+    static std::vector<TraversalHit>& lane_hits() {
+        thread_local std::vector<TraversalHit> v;
+        return v;
+    }
     SceneBox box_;
     HeightfieldTraversal walk_;
 };

@@ -2,9 +2,11 @@
 
 #include "core/check.h"
 #include "core/parallel.h"
+#include "gonio/trace/heightfield_cells.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 
@@ -12,6 +14,8 @@
 #pragma GCC optimize("fp-contract=off")
 
 namespace gonio {
+
+using namespace walk_cells;
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -34,7 +38,8 @@ float float_below(double clear) {
 } // namespace
 
 HeightfieldTraversal::HeightfieldTraversal(const HeightField& s)
-    : n_(s.n), avx2_(avx2_supported()) {
+    : n_(s.n), avx2_(avx2_supported()), lanes_(native_lanes()) {
+    if (const char* e = std::getenv("GONIO_HEIGHTFIELD_LANES"); e && e[0] == '0') lanes_ = 0;
     GONIO_CHECK(s.n >= 2); // Scene refuses smaller surfaces
     const int n = n_, v = n + 1;
     inv_spacing_ = 1.0 / s.spacing;
@@ -342,63 +347,6 @@ double HeightfieldTraversal::height_at(double x, double y) const {
         x * inv_spacing_, y * inv_spacing_, n_, nullptr, nullptr,
         [&](int i, int j) { return h_[size_t(j) * stride + size_t(i)]; });
 }
-
-namespace {
-// The cell of the patch's copy that holds coordinate v, bringing v into the patch by whole
-// periods; `lines` are the n + 1 grid lines. On a grid line, the cell the ray moves into: a ray
-// moving down the axis takes the cell below the line (so v = period stays in the last cell).
-[[gnu::always_inline]] inline int locate(double& v, double direction, const double* lines, int n,
-                                         double inv_spacing) {
-    const double period = lines[n];
-    if (direction < 0) { // v in (0, period], lines[i] < v <= lines[i + 1]
-        if (v <= 0 || v > period) {
-            v -= std::floor(v / period) * period;
-            if (v <= 0) v += period;
-            if (v > period) v = period;
-        }
-        int i = std::clamp(int(v * inv_spacing), 0, n - 1);
-        while (i > 0 && v <= lines[i]) --i;
-        while (i < n - 1 && v > lines[i + 1]) ++i;
-        return i;
-    }
-    if (v < 0 || v >= period) { // v in [0, period), lines[i] <= v < lines[i + 1]
-        v -= std::floor(v / period) * period;
-        if (v >= period) v -= period; // rounding of the line above
-        if (v < 0) v = 0;
-    }
-    int i = std::clamp(int(v * inv_spacing), 0, n - 1);
-    while (i > 0 && v < lines[i]) --i;
-    while (i < n - 1 && v >= lines[i + 1]) ++i;
-    return i;
-}
-
-// The cell of v in [0, period], on a grid line the one the ray moves into.
-[[gnu::always_inline]] inline int cell_of(double v, double direction, const double* lines, int n,
-                                          double inv_spacing) {
-    int i = std::clamp(int(v * inv_spacing), 0, n - 1);
-    if (direction < 0) {
-        while (i > 0 && v <= lines[i]) --i;
-        while (i < n - 1 && v > lines[i + 1]) ++i;
-    } else {
-        while (i > 0 && v < lines[i]) --i;
-        while (i < n - 1 && v >= lines[i + 1]) ++i;
-    }
-    return i;
-}
-
-// The cell in [lo, hi] that holds v (an exit point on a node's face), taking, within `tolerance`
-// of a grid line, the cell the ray comes from (the walk then steps on at once).
-[[gnu::always_inline]] inline int locate_within(double v, double direction, int lo, int hi,
-                                                const double* lines, double inv_spacing,
-                                                double tolerance) {
-    int i = std::clamp(int(v * inv_spacing), lo, hi); // v >= 0 up to rounding: truncation
-    while (i > lo && v < lines[i]) --i;
-    while (i < hi && v >= lines[i + 1]) ++i;
-    if (direction > 0 && i > lo && v - lines[i] < tolerance) --i;
-    if (direction < 0 && i < hi && lines[i + 1] - v < tolerance) ++i;
-    return i;
-}
-} // namespace
 
 bool HeightfieldTraversal::avx2_supported() {
 #if defined(__x86_64__)

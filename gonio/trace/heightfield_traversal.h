@@ -20,6 +20,9 @@
 #include "heightfield/heightfield.h"
 
 #include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace gonio {
@@ -46,6 +49,13 @@ struct BeamEntry {
     std::vector<float> t; // width^2, row-major
 };
 
+// One ray for HeightfieldTraversal::trace_lanes, as trace() takes it.
+struct LaneRay {
+    Vec3 o, d;
+    int max_wraps = 0;
+    const BeamEntry* beam = nullptr;
+};
+
 class HeightfieldTraversal {
   public:
     explicit HeightfieldTraversal(const HeightField& surface);
@@ -58,6 +68,21 @@ class HeightfieldTraversal {
     // distance; any other ray ignores it.
     TraversalHit trace(const Vec3& o, const Vec3& d, double z_top, double z_bottom, int max_wraps,
                        const BeamEntry* beam = nullptr) const;
+
+    // trace() of each of `count` rays, out[i] for rays[i]: side by side in SIMD lanes where the
+    // walk stays near the surface (heightfield_lanes.cpp), the others one by one. A lane finds
+    // what the scalar walk finds but where the scalar walk's jumps over clear blocks would have
+    // rounded differently (within a float ulp of a block's bounds).
+    void trace_lanes(const LaneRay* rays, std::size_t count, double z_top, double z_bottom,
+                     TraversalHit* out) const;
+    // The lanes of the widest instruction set the processor has (Highway's run-time dispatch).
+    static int native_lanes();
+    // The instruction sets the lanes are compiled for that this processor has (name, Highway's
+    // target bit, for hwy::SetSupportedTargetsForTest in the tests).
+    static std::vector<std::pair<std::string, std::int64_t>> lane_targets();
+    // use_lanes(false): trace_lanes walks every ray with the scalar walk (tests, benchmark).
+    void use_lanes(bool on) { lanes_ = on ? native_lanes() : 0; }
+    bool uses_lanes() const { return lanes_ > 0; }
 
     // The clear distances of a beam of `rays` rays of direction d (d.z < 0) from the plane
     // z = z_start (none when too few rays would use them to pay for them).
@@ -112,6 +137,11 @@ class HeightfieldTraversal {
     std::vector<float> beam_window_;
 
     bool avx2_ = false; // the walk compiled for AVX2 (the same results)
+    int lanes_ = 0;     // trace_lanes' lanes (0: the scalar walk)
+
+    // Whether a ray of direction d walks in a lane: it crosses at most 64 cells within the
+    // relief, so that the scalar walk would not climb the pyramid either.
+    bool lane_eligible(const Vec3& d) const;
 
     // beam_entry's clear distances for a grazing beam (e sized, its d and z_start set).
     void grazing_entry(BeamEntry& e) const;

@@ -36,9 +36,8 @@ Scene::Scene(const HeightField& s, const TraceBackendKind& backend)
     backend_ = backend.create(s, box_);
 }
 
-SurfaceHit Scene::trace(Vec3 o, const Vec3& d, bool below, int max_wraps,
-                        const BeamEntry* beam) const {
-    SurfaceHit r;
+// The origin kept on its side of the surface, as the backend sees it (see trace()).
+void Scene::repair(Vec3& o, const Vec3& d, bool below, SurfaceHit& r) const {
     const double side = below ? -1.0 : 1.0; // the ray's side of the surface: +1 above, -1 below
     // The origin as the backend sees it: in float (Embree) or in double.
     const bool in_float = backend_->float_origins();
@@ -62,8 +61,22 @@ SurfaceHit Scene::trace(Vec3 o, const Vec3& d, bool below, int max_wraps,
             r.lifted = true;
         }
     }
-    backend_->trace(o, d, side, max_wraps, beam, r);
+}
+
+SurfaceHit Scene::trace(Vec3 o, const Vec3& d, bool below, int max_wraps,
+                        const BeamEntry* beam) const {
+    SurfaceHit r;
+    repair(o, d, below, r);
+    backend_->trace(o, d, below ? -1.0 : 1.0, max_wraps, beam, r);
     return r;
+}
+
+void Scene::trace_stream(StreamRay* rays, std::size_t n, int max_wraps, SurfaceHit* hits) const {
+    for (std::size_t i = 0; i < n; ++i) {
+        hits[i] = SurfaceHit{};
+        repair(rays[i].origin, rays[i].dir, rays[i].below, hits[i]);
+    }
+    backend_->trace_stream(rays, n, max_wraps, hits);
 }
 
 } // namespace gonio

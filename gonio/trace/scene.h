@@ -43,6 +43,10 @@ class Scene {
     SurfaceHit trace(Vec3 origin, const Vec3& dir, bool below = false, int max_wraps = kMaxWraps,
                      const BeamEntry* beam = nullptr) const;
 
+    // trace() of each of n rays, hits[i] for rays[i] (whose origins it may repair): the backend
+    // may trace them side by side.
+    void trace_stream(StreamRay* rays, std::size_t n, int max_wraps, SurfaceHit* hits) const;
+
     // For a beam of `rays` rays of unit direction dir (going down) from the top plane,
     // z_max() + epsilon(): what trace() needs to start them lower (empty where the backend has
     // nothing to gain).
@@ -75,6 +79,10 @@ class Scene {
     int n_ = 0;
     double border_lo_ = 0, border_hi_ = 0; // the patch's inside, in float, nearest the border
     std::unique_ptr<TraceBackend> backend_;
+
+    // Moves the origin o of a ray along d onto its side of the surface as the backend sees it
+    // (r.lifted when it did).
+    void repair(Vec3& o, const Vec3& d, bool below, SurfaceHit& r) const;
 };
 
 } // namespace gonio

@@ -33,6 +33,14 @@ struct SurfaceHit {
     bool lifted = false; // the origin, as the backend sees it, lay on the wrong side
 };
 
+// One ray of a stream (Scene::trace_stream): its origin, unit direction, whether it travels under
+// the surface, and the beam it belongs to (nullptr for any other ray).
+struct StreamRay {
+    Vec3 origin, dir;
+    bool below = false;
+    const BeamEntry* beam = nullptr;
+};
+
 // The box the patch fills, [0, L]^2 x [z_min, z_max], and the offset that leaves a facet.
 struct SceneBox {
     double period = 0, z_min = 0, z_max = 0, epsilon = 0;
@@ -46,6 +54,14 @@ class TraceBackend {
     // max_wraps side walls, else kind = lost; `beam` as Scene::trace says.
     virtual void trace(Vec3 origin, const Vec3& dir, double side, int max_wraps,
                        const BeamEntry* beam, SurfaceHit& r) const = 0;
+    // Completes hits[i] for each of n rays (origins repaired by Scene) as trace() would: by
+    // default one by one; a backend may trace them side by side, with the same hits.
+    virtual void trace_stream(const StreamRay* rays, std::size_t n, int max_wraps,
+                              SurfaceHit* hits) const {
+        for (std::size_t i = 0; i < n; ++i)
+            trace(rays[i].origin, rays[i].dir, rays[i].below ? -1.0 : 1.0, max_wraps, rays[i].beam,
+                  hits[i]);
+    }
     // One segment, no wrapping: the first triangle at t >= 0 from either side in the patch.
     virtual SegmentHit intersect(const float origin[3], const float dir[3]) const = 0;
     // For the benchmark: the first hits' t (infinity: none) of n segments [n][origin, dir], as
