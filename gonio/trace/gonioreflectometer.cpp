@@ -38,6 +38,11 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
         std::vector<double> w(count * size_t(nc), 1.0), next_w;
         std::vector<double> before(static_cast<size_t>(nc));
         next_rays.reserve(count), next_bounces.reserve(count), next_w.reserve(w.size());
+        // A ray's nc weights onto the end of v (vector::insert of a range costs ~60 instructions
+        // for one channel: callgrind, 4 % of a mirror's pipeline).
+        auto append = [nc](std::vector<double>& v, const double* from) {
+            for (int k = 0; k < nc; ++k) v.push_back(from[k]);
+        };
         // Ray r of the batch's beam lies in grid cell (r mod S, r div S); the cell is stepped
         // rather than divided out per ray.
         long long cx = first % side, cy = first / side;
@@ -74,7 +79,7 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
                     const int order = std::min(ray_bounces, orders) - 1;
                     o.bin.push_back(up ? order : orders + order);
                     o.exit.push_back(dir);
-                    o.weight.insert(o.weight.end(), wr, wr + nc);
+                    append(o.weight, wr);
                     continue;
                 }
                 if (h.kind != SurfaceHit::hit) { // wrapped without end
@@ -99,7 +104,7 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
                 next_rays.push_back(StreamRay{h.position + (along >= 0 ? eps : -eps) * h.normal,
                                               next, next_below, nullptr});
                 next_bounces.push_back(ray_bounces);
-                next_w.insert(next_w.end(), wr, wr + nc);
+                append(next_w, wr);
             }
             rays.swap(next_rays), bounces.swap(next_bounces), w.swap(next_w);
         }

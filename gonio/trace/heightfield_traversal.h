@@ -139,10 +139,6 @@ class HeightfieldTraversal {
     bool avx2_ = false; // the walk compiled for AVX2 (the same results)
     int lanes_ = 0;     // trace_lanes' lanes (0: the scalar walk)
 
-    // Whether a ray of direction d walks in a lane: it crosses at most 64 cells within the
-    // relief, so that the scalar walk would not climb the pyramid either.
-    bool lane_eligible(const Vec3& d) const;
-
     // beam_entry's clear distances for a grazing beam (e sized, its d and z_start set).
     void grazing_entry(BeamEntry& e) const;
 
