@@ -18,6 +18,7 @@
 #include <memory>
 #include <random>
 #include <tbb/global_control.h>
+#include <utility>
 
 using namespace gonio;
 
@@ -40,6 +41,15 @@ Vec3 mostly_grazing(std::mt19937_64& rng, double z_sign) {
     Vec3 d = spherical_direction(theta, 2 * kPi * u(rng));
     d.z = std::copysign(d.z, z_sign);
     return d;
+}
+
+// The lowest and highest vertex of the traversal's surface (n + 1 vertices a side).
+std::pair<double, double> vertex_range(const HeightfieldTraversal& t, int n) {
+    double lo = 1e300, hi = -1e300;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i)
+            lo = std::min(lo, t.vertex(i, j).z), hi = std::max(hi, t.vertex(i, j).z);
+    return {lo, hi};
 }
 
 std::unique_ptr<Ndf> ndf_of(bool ggx, double alpha) {
@@ -331,11 +341,7 @@ TEST_CASE("the walk compiled for AVX2 gives the baseline walk's results bit for 
         baseline.use_avx2(false);
         CHECK(avx2.uses_avx2());
         CHECK_FALSE(baseline.uses_avx2());
-        double lo = 1e300, hi = -1e300;
-        for (int j = 0; j <= surface.n; ++j)
-            for (int i = 0; i <= surface.n; ++i)
-                lo = std::min(lo, baseline.vertex(i, j).z),
-                hi = std::max(hi, baseline.vertex(i, j).z);
+        const auto [lo, hi] = vertex_range(baseline, surface.n);
         const double top = hi + 1e-3, bottom = lo - 1e-3, L = baseline.period();
         std::mt19937_64 rng(std::uint64_t(40 + k));
         std::uniform_real_distribution<double> u(0, 1);
@@ -376,10 +382,7 @@ TEST_CASE("the ray-parallel walk finds the scalar walk's hits, whatever its lane
         scalar.use_lanes(false);
         CHECK(lanes.uses_lanes());
         CHECK_FALSE(scalar.uses_lanes());
-        double lo = 1e300, hi = -1e300;
-        for (int j = 0; j <= surface.n; ++j)
-            for (int i = 0; i <= surface.n; ++i)
-                lo = std::min(lo, scalar.vertex(i, j).z), hi = std::max(hi, scalar.vertex(i, j).z);
+        const auto [lo, hi] = vertex_range(scalar, surface.n);
         const double top = hi + 1e-3, bottom = lo - 1e-3, L = scalar.period();
         std::mt19937_64 rng(std::uint64_t(60 + k));
         std::uniform_real_distribution<double> u(0, 1);
@@ -425,11 +428,7 @@ TEST_CASE("the ray-parallel walk gives the same bits on every instruction set") 
     // lanes, every field of every result equal.
     const HeightField surface = surface_of(Ggx(0.6), 128, 70);
     const HeightfieldTraversal reference(surface);
-    double lo = 1e300, hi = -1e300;
-    for (int j = 0; j <= surface.n; ++j)
-        for (int i = 0; i <= surface.n; ++i)
-            lo = std::min(lo, reference.vertex(i, j).z),
-            hi = std::max(hi, reference.vertex(i, j).z);
+    const auto [lo, hi] = vertex_range(reference, surface.n);
     const double top = hi + 1e-3, bottom = lo - 1e-3, L = reference.period();
     std::mt19937_64 rng(71);
     std::uniform_real_distribution<double> u(0, 1);

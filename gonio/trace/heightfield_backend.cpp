@@ -19,29 +19,14 @@ class HeightfieldBackend final : public TraceBackend {
             const TraversalHit h =
                 walk_.trace(o, d, box_.z_max + box_.epsilon, box_.z_min - box_.epsilon,
                             max_wraps - r.wraps, beam);
-            r.wraps += h.wraps;
-            if (h.kind == TraversalHit::escaped_up || h.kind == TraversalHit::escaped_down) {
-                r.kind = h.kind == TraversalHit::escaped_up ? SurfaceHit::escaped_up
-                                                            : SurfaceHit::escaped_down;
-                return;
-            }
-            if (h.kind != TraversalHit::hit) {
+            Vec3 up;
+            if (!complete(h, d, side, r, up)) return;
+            // Met from the wrong side: as the Embree backend does.
+            o = h.position + side * box_.epsilon * up;
+            if (++r.reentries > 64) {
                 r.kind = SurfaceHit::lost;
                 return;
             }
-            const Vec3 up = normalize(h.normal);
-            if (side * dot(d, up) > 0) { // met from the wrong side: as the Embree backend does
-                o = h.position + side * box_.epsilon * up;
-                if (++r.reentries > 64) {
-                    r.kind = SurfaceHit::lost;
-                    return;
-                }
-                continue;
-            }
-            r.kind = SurfaceHit::hit;
-            r.normal = up;
-            r.position = h.position;
-            return;
         }
     }
 
@@ -57,28 +42,12 @@ class HeightfieldBackend final : public TraceBackend {
         walk_.trace_lanes(in.data(), n, box_.z_max + box_.epsilon, box_.z_min - box_.epsilon,
                           out.data());
         for (std::size_t i = 0; i < n; ++i) {
-            const TraversalHit& h = out[i];
-            SurfaceHit& r = hits[i];
-            r.wraps = h.wraps;
-            if (h.kind == TraversalHit::escaped_up || h.kind == TraversalHit::escaped_down) {
-                r.kind = h.kind == TraversalHit::escaped_up ? SurfaceHit::escaped_up
-                                                            : SurfaceHit::escaped_down;
-                continue;
-            }
-            if (h.kind != TraversalHit::hit) {
-                r.kind = SurfaceHit::lost;
-                continue;
-            }
-            const Vec3 up = normalize(h.normal);
             const double side = rays[i].below ? -1.0 : 1.0;
-            if (side * dot(rays[i].dir, up) > 0) { // rare: the re-entries of trace()
-                r.wraps = 0;
-                trace(rays[i].origin, rays[i].dir, side, max_wraps, rays[i].beam, r);
-                continue;
+            Vec3 up;
+            if (complete(out[i], rays[i].dir, side, hits[i], up)) { // rare: trace()'s re-entries
+                hits[i].wraps = 0;
+                trace(rays[i].origin, rays[i].dir, side, max_wraps, rays[i].beam, hits[i]);
             }
-            r.kind = SurfaceHit::hit;
-            r.normal = up;
-            r.position = h.position;
         }
     }
 
@@ -104,6 +73,27 @@ class HeightfieldBackend final : public TraceBackend {
     std::size_t memory_bytes() const override { return walk_.memory_bytes(); }
 
   private:
+    // Completes r from the walk's result h (its walls added to r's) for a ray along d on `side`,
+    // but for a facet met from the wrong side: true then, its unit normal in up.
+    static bool complete(const TraversalHit& h, const Vec3& d, double side, SurfaceHit& r,
+                         Vec3& up) {
+        r.wraps += h.wraps;
+        if (h.kind == TraversalHit::escaped_up || h.kind == TraversalHit::escaped_down) {
+            r.kind = h.kind == TraversalHit::escaped_up ? SurfaceHit::escaped_up
+                                                        : SurfaceHit::escaped_down;
+            return false;
+        }
+        if (h.kind != TraversalHit::hit) {
+            r.kind = SurfaceHit::lost;
+            return false;
+        }
+        up = normalize(h.normal);
+        if (side * dot(d, up) > 0) return true;
+        r.kind = SurfaceHit::hit;
+        r.normal = up;
+        r.position = h.position;
+        return false;
+    }
     // Per thread, the stream's rays and hits as the traversal takes them (kept between calls).
     static std::vector<LaneRay>& lane_rays() {
         thread_local std::vector<LaneRay> v;
