@@ -47,6 +47,16 @@ struct BeamEntry {
     double z_start = 0;
     int shift = 0, width = 0;
     std::vector<float> t; // width^2, row-major
+    // A grazing beam along a grid axis (its rays stay within one row of cells, or one column,
+    // until they pass below the surface; row_axis 0 for rows, the beam along x, 1 for columns,
+    // -1 without): per row a max tree of its cells' corners along the beam. Level l >= 1 holds
+    // row_width[l] = ceil(n / 2^l) nodes of 2^l cells, from row_offset[l] on in its row's
+    // row_stride floats.
+    int row_axis = -1, row_top = 0;
+    std::size_t row_stride = 0;
+    std::vector<std::size_t> row_offset;
+    std::vector<int> row_width;
+    std::vector<float> row_max;
 };
 
 // One ray for HeightfieldTraversal::trace_lanes, as trace() takes it.
@@ -141,6 +151,14 @@ class HeightfieldTraversal {
 
     // beam_entry's clear distances for a grazing beam (e sized, its d and z_start set).
     void grazing_entry(BeamEntry& e) const;
+    // beam_entry's row trees for a grazing beam along a grid axis (e's d set; row_axis stays -1
+    // where the rays would drift across rows).
+    void grazing_rows(BeamEntry& e) const;
+    // A distance >= t along a ray of beam e (origin moved to (ox, oy, oz) by whole periods) up
+    // to which it is clear of the surface, from e's row trees: t itself when the ray leaves its
+    // row before it passes z_bottom.
+    double row_clear(const BeamEntry& e, double ox, double oy, double oz, const Vec3& d, double t,
+                     double z_bottom) const;
 
     // The walk for the ray's orientation, in the chosen instruction set.
     template <bool Avx2>
