@@ -351,41 +351,47 @@ void HeightfieldTraversal::grazing_rows(BeamEntry& e) const {
     if (!(std::abs(across) / std::abs(along) * cells < 0.25)) return;
     const int n = n_;
     const size_t v = size_t(n) + 1;
+    const bool forward = along > 0;
     // The height of vertex (i along the beam, j across it).
     auto height = [&](int i, int j) {
         return axis == 0 ? h_[size_t(j) * v + size_t(i)] : h_[size_t(i) * v + size_t(j)];
     };
-    // Row-major: a ray reads one row's tree, 4 n bytes (level-major measured no faster).
-    e.row_offset.assign(1, 0); // level 0: the cells, walked by the walk itself
+    e.row_fall = spacing_ / std::abs(along) * -d.z;
+    e.row_offset.assign(1, 0);
     e.row_width.assign(1, n);
-    size_t floats = 0;
-    int top = 0;
-    for (int l = 1;; ++l) {
-        const int w = (n + (1 << l) - 1) >> l;
+    size_t floats = size_t(n);
+    for (int w = n; w > 1;) {
+        w = (w + BeamEntry::kRowFan - 1) / BeamEntry::kRowFan;
         e.row_offset.push_back(floats);
         e.row_width.push_back(w);
         floats += size_t(w);
-        top = l;
-        if (w == 1) break;
     }
-    e.row_top = top, e.row_stride = floats;
-    e.row_max.resize(size_t(n) * floats);
+    e.row_stride = floats;
+    e.row_reach.resize(size_t(n) * floats);
     parallel_for(0, n, [&](int j) {
-        float* row = e.row_max.data() + size_t(j) * floats;
-        // Level 1: the vertices of rows j and j + 1 of cells 2k and 2k + 1.
-        for (int k = 0; k < e.row_width[1]; ++k) {
-            float m = -std::numeric_limits<float>::max();
-            for (int i = 2 * k; i <= std::min(2 * k + 2, n); ++i)
-                m = std::max({m, height(i, j), height(i, j + 1)});
-            row[k] = m;
+        float* reach = e.row_reach.data() + size_t(j) * floats;
+        // Level 0, in the order of travel: the cell's highest corner, raised by the rays' fall
+        // from the copy's start to the cell's far side (rounded up to float).
+        for (int k = 0; k < n; ++k) {
+            const int i = forward ? k : n - 1 - k;
+            const float top =
+                std::max({height(i, j), height(i + 1, j), height(i, j + 1), height(i + 1, j + 1)});
+            const double g = double(top) + double(k + 1) * e.row_fall;
+            float f = float(g);
+            if (double(f) < g) f = std::nextafter(f, std::numeric_limits<float>::max());
+            reach[k] = f;
         }
-        for (int l = 2; l <= top; ++l) {
-            const size_t wb = size_t(e.row_width[size_t(l) - 1]);
-            const size_t w = size_t(e.row_width[size_t(l)]);
-            const float* below = row + e.row_offset[size_t(l) - 1];
-            float* up = row + e.row_offset[size_t(l)];
-            for (size_t k = 0; k < w; ++k)
-                up[k] = 2 * k + 1 < wb ? std::max(below[2 * k], below[2 * k + 1]) : below[2 * k];
+        for (size_t l = 1; l < e.row_width.size(); ++l) {
+            const size_t wb = size_t(e.row_width[l - 1]), w = size_t(e.row_width[l]);
+            const float* below = reach + e.row_offset[l - 1];
+            float* up = reach + e.row_offset[l];
+            for (size_t k = 0; k < w; ++k) {
+                float m = below[k * BeamEntry::kRowFan];
+                for (size_t c = k * BeamEntry::kRowFan + 1;
+                     c < std::min(wb, (k + 1) * BeamEntry::kRowFan); ++c)
+                    m = std::max(m, below[c]);
+                up[k] = m;
+            }
         }
     });
     e.row_axis = axis;
@@ -408,54 +414,50 @@ double HeightfieldTraversal::row_clear(const BeamEntry& e, double ox, double oy,
     while (j > 0 && lo < line_[size_t(j)]) --j;
     while (j < n - 1 && lo >= line_[size_t(j) + 1]) ++j;
     if (!(line_[size_t(j)] <= lo && hi <= line_[size_t(j) + 1])) return t;
-    const float* row = e.row_max.data() + size_t(j) * e.row_stride;
-    const std::size_t* offset = e.row_offset.data();
-    // Along the beam cell by cell, the cells' distances along the ray from the one of the patch
-    // copy the ray is in (t_base: where it enters cell 0 there, moved a period per wall); every
-    // bound is widened by a cell of the ray's fall and the pad (the float grid lines lie within
-    // an ulp of i * spacing).
+    const float* reach = e.row_reach.data() + size_t(j) * e.row_stride;
+    const size_t levels = e.row_width.size();
+    constexpr int fan = BeamEntry::kRowFan;
+    // In the order of travel, cell k of the copy of the patch the ray is in is entered at
+    // t_base + k cell_t, and may be met when its reach is >= a: the ray's height where the copy
+    // starts, less a cell of its fall and the pad (the float grid lines lie within an ulp of
+    // i * spacing). The next copy: a period later, a period's fall lower.
     const bool forward = along > 0;
-    const double inv_along = 1.0 / along, cell_dt = spacing_ * inv_along;
-    const double margin = std::abs(cell_dt) * -d.z + 2 * pad_;
-    // Clear, whatever the periods, until the ray comes down to its row's highest vertex.
-    double tc = std::max(t, (double(row[offset[e.row_top]]) + margin - oz) / d.z);
-    if (tc >= t_end) return t_end;
-    const double x = (oa + tc * along) * inv_spacing_;
+    const double cell_t = spacing_ / std::abs(along);
+    const double x = (oa + t * along) * inv_spacing_;
     const double copy = std::floor(x / n);
-    int c = std::clamp(int(x - copy * n), 0, n - 1);
-    double t_base = (copy * n * spacing_ - oa) * inv_along;
-    const double period_dt = n * cell_dt;
-    int level = e.row_top - 1;
+    const int c = std::clamp(int(x - copy * n), 0, n - 1);
+    double t_base = ((copy * n + (forward ? 0 : n)) * spacing_ - oa) / along;
+    double a = oz + t_base * d.z - e.row_fall - 2 * pad_;
+    const double period_t = n * cell_t, period_fall = n * e.row_fall;
+    const float row_top = reach[e.row_offset[levels - 1]];
+    int start = forward ? c : n - 1 - c;
     for (;;) {
-        if (tc >= t_end) return t_end;
-        const int k = c >> level;
-        const int c0 = k << level, c1 = std::min((k + 1) << level, n);
-        const double t_exit = t_base + (forward ? c1 : c0) * cell_dt;
-        if (double(row[offset[level] + size_t(k)]) < oz + t_exit * d.z - margin) {
-            // Clear across the node: on to the next, from the highest level that starts there.
-            tc = std::max(tc, t_exit);
-            if (forward) {
-                c = c1;
-                if (c == n) c = 0, t_base += period_dt;
-            } else {
-                c = c0 - 1;
-                if (c < 0) c = n - 1, t_base -= period_dt;
+        if (t_base + start * cell_t >= t_end) return t_end;
+        // The first cell from `start` on that may be met: up the levels while a fan of nodes
+        // holds none, down into the first node that holds one.
+        if (double(row_top) >= a) {
+            size_t level = 0;
+            long long at = start;
+            for (;;) {
+                const float* nodes = reach + e.row_offset[level];
+                const long long w = e.row_width[level];
+                const long long end = std::min((at / fan + 1) * fan, w);
+                while (at < end && double(nodes[at]) < a) ++at;
+                if (at < end) {
+                    if (level == 0) {
+                        // The walk takes over a cell before it.
+                        return std::clamp(t_base + double(at - 1) * cell_t, t, t_end);
+                    }
+                    --level, at *= fan;
+                    continue;
+                }
+                if (end == w) break; // none further in this copy
+                ++level, at = end / fan;
             }
-            while (level < e.row_top) {
-                const int up = level + 1;
-                const int first =
-                    forward ? (c >> up) << up : std::min(((c >> up) + 1) << up, n) - 1;
-                if (first != c) break;
-                level = up;
-            }
-            continue;
         }
-        if (level > 1) {
-            --level;
-            continue;
-        }
-        // The first pair of cells the ray may meet: the walk takes over a cell before it.
-        return std::max(t, tc - std::abs(cell_dt));
+        // On to the copy where the ray comes down to the row's top.
+        const double copies = std::max(1.0, std::ceil((a - double(row_top)) / period_fall));
+        t_base += copies * period_t, a -= copies * period_fall, start = 0;
     }
 }
 

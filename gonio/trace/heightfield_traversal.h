@@ -49,14 +49,18 @@ struct BeamEntry {
     std::vector<float> t; // width^2, row-major
     // A grazing beam along a grid axis (its rays stay within one row of cells, or one column,
     // until they pass below the surface; row_axis 0 for rows, the beam along x, 1 for columns,
-    // -1 without): per row a max tree of its cells' corners along the beam. Level l >= 1 holds
-    // row_width[l] = ceil(n / 2^l) nodes of 2^l cells, from row_offset[l] on in its row's
-    // row_stride floats.
-    int row_axis = -1, row_top = 0;
+    // -1 without): per row, in the order of travel, each cell's reach (its highest corner raised
+    // by the rays' fall from the start of the patch's copy to the cell's far side, row_fall a
+    // cell), so that a ray meets it only if its reach exceeds its own height at that start; and
+    // a max tree of kRowFan-wide nodes over them. Level l holds row_width[l] nodes from
+    // row_offset[l] on in its row's row_stride floats, level 0 the cells.
+    static constexpr int kRowFan = 16; // a node's children: one cache line of floats
+    int row_axis = -1;
+    double row_fall = 0;
     std::size_t row_stride = 0;
     std::vector<std::size_t> row_offset;
     std::vector<int> row_width;
-    std::vector<float> row_max;
+    std::vector<float> row_reach;
 };
 
 // One ray for HeightfieldTraversal::trace_lanes, as trace() takes it.
