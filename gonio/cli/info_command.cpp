@@ -125,8 +125,8 @@ void print_text(const ResultSummary& s) {
                     c.name.c_str(), attribute(c.attributes, "ndf").c_str(),
                     attribute(c.attributes, "fresnel").c_str(),
                     attribute(c.attributes, "masking").c_str(),
-                    backend.empty() ? "embree" : backend.c_str(), c.cells, c.channels,
-                    c.channels == 1 ? "" : "s");
+                    backend.empty() ? "embree (a file older than the attribute)" : backend.c_str(),
+                    c.cells, c.channels, c.channels == 1 ? "" : "s");
         if (!c.wavelength_nm.empty()) {
             std::printf(" (");
             for (size_t k = 0; k < c.wavelength_nm.size(); ++k)

@@ -31,13 +31,25 @@ TraceResult trace_incidence(const Scene& scene, const Material& material,
         long long segments = 0; // counted locally: neighbouring blocks may share a cache line
         Rng rng{st.seed, st.stream, std::uint64_t(id)};
         const size_t count = size_t(last - first);
-        std::vector<StreamRay> rays(count), next_rays;
-        std::vector<SurfaceHit> hits(count);
-        std::vector<int> bounces(count, 0), next_bounces;
-        // Each ray's power, divided by the batch's rays when finished.
-        std::vector<double> w(count * size_t(nc), 1.0), next_w;
+        // The working arrays, per thread, kept from block to block (allocating them per block
+        // cost ~3 % of a mirror's run at 1024^2, theta_i 60 deg: perf).
+        struct Work {
+            std::vector<StreamRay> rays, next_rays;
+            std::vector<SurfaceHit> hits;
+            std::vector<int> bounces, next_bounces;
+            std::vector<double> w, next_w; // each ray's power, per channel
+        };
+        thread_local Work work;
+        std::vector<StreamRay>&rays = work.rays, &next_rays = work.next_rays;
+        std::vector<SurfaceHit>& hits = work.hits;
+        std::vector<int>&bounces = work.bounces, &next_bounces = work.next_bounces;
+        std::vector<double>&w = work.w, &next_w = work.next_w;
+        rays.resize(count), hits.resize(count);
+        bounces.assign(count, 0), w.assign(count * size_t(nc), 1.0);
         std::vector<double> before(static_cast<size_t>(nc));
         next_rays.reserve(count), next_bounces.reserve(count), next_w.reserve(w.size());
+        // Every ray leaves at most once.
+        o.bin.reserve(count), o.exit.reserve(count), o.weight.reserve(count * size_t(nc));
         // A ray's nc weights onto the end of v (vector::insert of a range costs ~60 instructions
         // for one channel: callgrind, 4 % of a mirror's pipeline).
         auto append = [nc](std::vector<double>& v, const double* from) {
