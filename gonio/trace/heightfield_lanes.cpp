@@ -439,6 +439,7 @@ void HeightfieldTraversal::trace_lanes(const LaneRay* rays, std::size_t count, d
     thread_local std::vector<Arrays> arrays(1);
     Arrays& a = arrays[0];
     std::size_t ray_of[kBatch + kMaxLanes];
+    std::uint16_t keep[kBatch]; // the rays still walking, by their place before compaction
     const double* line = line_.data();
     const std::size_t stride = std::size_t(n_) + 1;
     auto scalar = [&](std::size_t i) {
@@ -470,16 +471,15 @@ void HeightfieldTraversal::trace_lanes(const LaneRay* rays, std::size_t count, d
         idle(live, live + width);
         HWY_DYNAMIC_DISPATCH(SetUp)(grid, a, live);
         for (;;) {
-            // The rays that stopped are completed; the others move up, in order.
+            // The rays that stopped are completed; the others move up, in order, a field at a
+            // time (a ray at a time, its fields 4 KiB apart, took 40 % of this function: perf,
+            // 1024^2, theta_i 60 deg).
             std::size_t kept = 0;
             for (std::size_t k = 0; k < live; ++k) {
                 const double event = a.f[kEvent][k];
                 const std::size_t i = ray_of[k];
                 if (event == kWalking) {
-                    if (kept != k) {
-                        for (int f = 0; f < kFields; ++f) a.f[f][kept] = a.f[f][k];
-                        ray_of[kept] = i;
-                    }
+                    ray_of[kept] = i, keep[kept] = std::uint16_t(k);
                     ++kept;
                 } else if (event == kHit) {
                     // The scalar walk's found() for cell (cx, cy) of this copy of the patch.
@@ -518,6 +518,13 @@ void HeightfieldTraversal::trace_lanes(const LaneRay* rays, std::size_t count, d
                     scalar(i);
                 }
             }
+            std::size_t moved = 0; // the rays before the first that stopped stay
+            while (moved < kept && keep[moved] == moved) ++moved;
+            if (moved < kept)
+                for (int f = 0; f < kFields; ++f) {
+                    double* field = a.f[f];
+                    for (std::size_t j = moved; j < kept; ++j) field[j] = field[keep[j]];
+                }
             live = kept;
             if (live == 0) break;
             idle(live, live + width);
