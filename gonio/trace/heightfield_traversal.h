@@ -5,7 +5,7 @@
 // dilated min-max blocks and, for rays that cross many cells within the relief (grazing ones), a
 // min-max pyramid over the grid; native wrapping through the side walls. The rays of a beam
 // (one direction, one start plane) start where their block of origins is known clear
-// (beam_entry).
+// (beam_entry), or, a grazing beam along a grid axis, where each ray's own row is.
 //
 // Watertight by construction: every vertex is projected into the ray's sheared frame once per
 // test from the same inputs, and the edge function of a shared edge is computed from the same two
@@ -41,7 +41,7 @@ struct TraversalHit {
 // 2^shift x 2^shift cells of origins, a distance along the ray that every ray starting over the
 // block travels clear of the surface, so that its walk starts there, possibly several periods
 // away for grazing beams (built by HeightfieldTraversal::beam_entry; empty, width 0, where it
-// would not pay).
+// would not pay or where the beam has row trees instead).
 struct BeamEntry {
     Vec3 d;
     double z_start = 0;
