@@ -567,9 +567,8 @@ TEST_CASE("trace.backend chooses the backend, and a bad one is refused by name")
     // looks at); Embree is chosen by name.
     CHECK(&default_trace_backend() == &heightfield_backend());
     CHECK(parse_config(base, "t.toml").cases[0].trace.backend == &default_trace_backend());
-    CHECK(parse_config(base + "[trace]\nbackend = \"embree\"\n", "t.toml")
-              .cases[0]
-              .trace.backend == &embree_backend());
+    CHECK(parse_config(base + "[trace]\nbackend = \"embree\"\n", "t.toml").cases[0].trace.backend ==
+          &embree_backend());
     try {
         parse_config(base + "[trace]\nbackend = \"optix\"\n", "t.toml");
         FAIL("accepted");
